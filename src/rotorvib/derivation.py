@@ -1,0 +1,78 @@
+"""Symbolic checking of printed equations (sympy): Lagrange's equations and a PASS/FAIL table.
+
+Every paper's derivation module produces :class:`Check` rows; :func:`write_checks` writes them as
+CSV and Markdown in one format for all papers.
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+from pathlib import Path
+
+import sympy as sp
+
+
+@dataclass(frozen=True)
+class Check:
+    """One printed equation checked against the derivation."""
+
+    paper: str
+    equation: str
+    description: str
+    passed: bool
+    difference: str = "0"
+
+    @property
+    def status(self) -> str:
+        return "PASS" if self.passed else "FAIL"
+
+
+def lagrange_equations(T, V, coords, t, forces) -> list[sp.Expr]:
+    """``d/dt dL/dq' - dL/dq - Q`` for each generalised coordinate ``q(t)`` with ``L = T - V``."""
+    L = T - V
+    return [sp.expand(sp.diff(sp.diff(L, q.diff(t)), t) - sp.diff(L, q) - Q)
+            for q, Q in zip(coords, forces)]
+
+
+def compare(paper: str, equation: str, description: str, derived, printed, *,
+            proportional_to=None) -> Check:
+    """PASS when ``derived - s * printed`` simplifies to zero.
+
+    With ``proportional_to`` (a term such as ``u''``) the scale ``s`` is the ratio of the two
+    coefficients of that term (a printed equation may be the derived one divided by a constant);
+    otherwise ``s = 1``.  The difference is reported in the printed equation's scale.
+    """
+    derived, printed = sp.expand(derived), sp.expand(printed)
+    scale = sp.Integer(1)
+    if proportional_to is not None:
+        scale = sp.simplify(derived.coeff(proportional_to) / printed.coeff(proportional_to))
+    diff = sp.simplify(derived / scale - printed)
+    text = "0" if diff == 0 else sp.sstr(sp.factor(diff))
+    if scale != 1 and diff == 0:
+        text = f"0 (printed = derived / {scale})"
+    return Check(paper, equation, description, diff == 0, text)
+
+
+def compare_matrices(paper: str, equation: str, description: str, derived: sp.Matrix,
+                     printed: sp.Matrix) -> Check:
+    diff = sp.simplify(derived - printed)
+    bad = [f"[{i},{j}]: {sp.sstr(diff[i, j])}" for i in range(diff.rows)
+           for j in range(diff.cols) if diff[i, j] != 0]
+    return Check(paper, equation, description, not bad, "; ".join(bad) or "0")
+
+
+def write_checks(checks: list[Check], csv_path: str | Path, md_path: str | Path) -> None:
+    """Write the PASS/FAIL table of printed equations as CSV and Markdown."""
+    header = ["paper", "equation", "check", "status", "difference"]
+    rows = [[c.paper, c.equation, c.description, c.status, c.difference] for c in checks]
+    with open(csv_path, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.writer(fh, lineterminator="\n")
+        writer.writerow(header)
+        writer.writerows(rows)
+    n_fail = sum(not c.passed for c in checks)
+    lines = ["# Printed equations checked symbolically", "",
+             f"{len(checks)} checks, {len(checks) - n_fail} PASS, {n_fail} FAIL.", "",
+             "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |" for row in rows]
+    Path(md_path).write_text("\n".join(lines) + "\n", encoding="utf-8")

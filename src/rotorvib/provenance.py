@@ -1,0 +1,55 @@
+"""Provenance of a result: code version, configuration and software environment."""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import importlib.metadata
+import subprocess
+from pathlib import Path
+
+#: Packages whose versions are recorded in every dataset.
+RECORDED_PACKAGES = ("rotorvib", "numpy", "scipy", "numba", "xarray", "netCDF4", "pymoo",
+                     "sympy", "matplotlib", "snakemake")
+
+
+def git_state(repo: str | Path = ".") -> tuple[str, bool]:
+    """Return ``(commit, dirty)`` of the git work tree at ``repo``; ``("unknown", False)`` outside git."""
+    try:
+        commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=repo, capture_output=True,
+                                text=True, check=True).stdout.strip()
+        status = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                                cwd=repo, capture_output=True, text=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown", False
+    return commit, bool(status.strip())
+
+
+def package_versions(names=RECORDED_PACKAGES) -> dict[str, str]:
+    versions = {}
+    for name in names:
+        try:
+            versions[name] = importlib.metadata.version(name)
+        except importlib.metadata.PackageNotFoundError:
+            versions[name] = "not installed"
+    return versions
+
+
+def source_fingerprint(*modules: str) -> str:
+    """SHA-256 over the source files of the named modules or packages (recursively).
+
+    Used as a Snakemake ``params`` value so that editing library code under ``src/`` reruns
+    exactly the jobs whose code changed.
+    """
+    files = []
+    for name in modules:
+        spec = importlib.util.find_spec(name)
+        if spec is None or spec.origin is None:
+            raise ModuleNotFoundError(f"cannot fingerprint unknown module {name!r}")
+        origin = Path(spec.origin)
+        files += sorted(origin.parent.rglob("*.py")) if origin.name == "__init__.py" else [origin]
+    digest = hashlib.sha256()
+    for path in sorted(set(files)):
+        digest.update(path.name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
