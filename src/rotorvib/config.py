@@ -109,6 +109,27 @@ def _check_intervals(config: dict) -> list[str]:
     return problems
 
 
+def _lookup(config: dict, dotted: str):
+    node = config
+    for part in dotted.split("."):
+        node = node[part]
+    return node
+
+
+def _check_relations(config: dict, schema: dict, path=()) -> list[str]:
+    """Honour the schema extension ``x-at-most: other.key`` (this value <= that value)."""
+    problems = []
+    for key, sub in schema.get("properties", {}).items():
+        here = path + (key,)
+        if "x-at-most" in sub:
+            value, other = _lookup(config, _key(here)), _lookup(config, sub["x-at-most"])
+            if not value <= other:
+                problems.append(f"config key '{_key(here)}': {value!r} must be <= "
+                                f"'{sub['x-at-most']}' = {other!r}")
+        problems += _check_relations(config, sub, here)
+    return problems
+
+
 def validate_config(config: dict, schema: dict) -> dict:
     """Return a validated copy of ``config`` with the schema's defaults filled in.
 
@@ -120,7 +141,7 @@ def validate_config(config: dict, schema: dict) -> dict:
     errors = sorted(validator.iter_errors(filled), key=lambda e: list(map(str, e.absolute_path)))
     messages = [_describe(e) for e in errors]
     if not messages:
-        messages = _check_intervals(filled)
+        messages = _check_intervals(filled) + _check_relations(filled, schema)
     if messages:
         raise ConfigError("invalid configuration:\n  " + "\n  ".join(messages))
     return filled

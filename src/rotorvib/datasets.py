@@ -58,9 +58,10 @@ def _date_attrs() -> dict:
 
 
 def check_metadata(ds: xr.Dataset) -> None:
-    """Raise ``ValueError`` if a variable or coordinate lacks ``long_name`` or ``units``."""
+    """Raise ``ValueError`` if a variable lacks ``long_name``, or a numeric one ``units``."""
     missing = [f"{name}.{attr}" for name, var in ds.variables.items()
-               for attr in ("long_name", "units") if attr not in var.attrs]
+               for attr in ("long_name", "units") if attr not in var.attrs
+               and (attr == "long_name" or var.dtype.kind in "fiuc")]
     if missing:
         raise ValueError("dataset variables lack CF metadata: " + ", ".join(missing))
 

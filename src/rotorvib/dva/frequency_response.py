@@ -75,3 +75,9 @@ def theta_eq20(rotor: Rotor, x, omega, *, printed_determinant: bool = False) -> 
 def dimensionless_amplitude(rotor: Rotor, theta) -> np.ndarray:
     """``D = |Theta| k_t / Gamma0`` (paper C, after eq. 20)."""
     return np.abs(theta) * rotor.k_t / rotor.Gamma0
+
+
+def bare_rotor_amplitude(w) -> np.ndarray:
+    """``D = 1/|1 - w^2|`` of the rotor without absorber (infinite at ``w = 1``)."""
+    with np.errstate(divide="ignore"):
+        return 1.0 / np.abs(1.0 - np.asarray(w, dtype=float) ** 2)
