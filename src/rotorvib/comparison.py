@@ -13,6 +13,8 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from .tables import write_table
+
 COLUMNS = ("paper", "item", "quantity", "unit", "paper_value", "reproduced", "rel_error",
            "verdict", "explanation")
 MATCH_TOL = 0.01
@@ -100,34 +102,23 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
     return table
 
 
-def _fmt(value) -> str:
-    if value is None:
-        return ""
-    if isinstance(value, float):
-        return f"{value:.4g}"
-    return str(value)
+def paper_values_of(path: str | Path, paper: str) -> dict[str, float | None]:
+    """``{quantity: value}`` of one paper from the paper-values file."""
+    return {row["quantity"]: row["value"] for row in read_paper_values(path) if row["paper"] == paper}
 
 
-def write_csv(table: list[dict], path: str | Path) -> None:
-    with open(path, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.DictWriter(fh, fieldnames=COLUMNS, lineterminator="\n")
-        writer.writeheader()
-        for row in table:
-            writer.writerow({k: ("" if row[k] is None else row[k]) for k in COLUMNS})
-
-
-def write_markdown(table: list[dict], path: str | Path) -> None:
+def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path) -> None:
+    """``results/comparison.csv`` and ``.md``: the rows of :func:`build_table`."""
     counts = {}
     for row in table:
         counts[row["verdict"]] = counts.get(row["verdict"], 0) + 1
-    lines = ["# Paper values against the reproduction", "",
-             "Verdicts: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %), "
-             "QUALITATIVE (claim without a number).", "",
-             "Totals: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())), "",
-             "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
-    for row in table:
-        cells = [_fmt(row[k]).replace("|", "\\|") for k in COLUMNS]
-        if row["rel_error"] is not None:
-            cells[COLUMNS.index("rel_error")] = f"{100 * row['rel_error']:.2f} %"
-        lines.append("| " + " | ".join(cells) + " |")
-    Path(path).write_text("\n".join(lines) + "\n", encoding="utf-8")
+    notes = ["Verdicts: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %), "
+             "QUALITATIVE (claim without a number; the explanation says whether the data "
+             "support it).",
+             "Totals: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))]
+
+    def percent(row):
+        return {} if row["rel_error"] is None else {"rel_error": f"{100 * row['rel_error']:.2f} %"}
+
+    write_table([{k: row[k] for k in COLUMNS} for row in table], csv_path, md_path,
+                title="Paper values against the reproduction", notes=notes, markdown_cells=percent)

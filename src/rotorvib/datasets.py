@@ -66,27 +66,26 @@ def check_metadata(ds: xr.Dataset) -> None:
         raise ValueError("dataset variables lack CF metadata: " + ", ".join(missing))
 
 
-def write_dataset(ds: xr.Dataset, path: str | Path, *, title: str, summary: str,
-                  references: str, provenance: Provenance) -> Path:
+def write_dataset(ds: xr.Dataset, path: str | Path, provenance: Provenance) -> Path:
     """Write ``ds`` to ``path`` as compressed netCDF-4 with full metadata (see module docstring).
 
-    ``references`` names the paper (and the figure/table/equation) the data reproduce.
+    ``ds.attrs`` must hold ``title``, ``summary`` and ``references`` (the paper and the
+    figure/table/equation the data reproduce); other attributes are kept.
     """
     check_metadata(ds)
+    missing = [k for k in ("title", "summary", "references") if not ds.attrs.get(k)]
+    if missing:
+        raise ValueError(f"dataset lacks global attribute(s) {missing}")
     out = ds.copy()
     out.attrs = {
         "Conventions": "CF-1.11, ACDD-1.3",
-        "title": title,
-        "summary": summary,
         "institution": "rotorvib reproduction project",
         "source": "rotorvib numerical reproduction (see provenance_* attributes)",
         "history": f"created by rule '{provenance.rule}' of the rotorvib Snakemake workflow",
-        "references": references,
-        "comment": ds.attrs.get("comment", ""),
         "license": LICENSE,
         "project": PROJECT_URL,
         **_date_attrs(),
-        **{k: v for k, v in ds.attrs.items() if k != "comment"},
+        **ds.attrs,
         **provenance.attrs(),
     }
     encoding = {}

@@ -6,11 +6,12 @@ CSV and Markdown in one format for all papers.
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from pathlib import Path
 
 import sympy as sp
+
+from .tables import write_table
 
 
 @dataclass(frozen=True)
@@ -64,15 +65,8 @@ def compare_matrices(paper: str, equation: str, description: str, derived: sp.Ma
 
 def write_checks(checks: list[Check], csv_path: str | Path, md_path: str | Path) -> None:
     """Write the PASS/FAIL table of printed equations as CSV and Markdown."""
-    header = ["paper", "equation", "check", "status", "difference"]
-    rows = [[c.paper, c.equation, c.description, c.status, c.difference] for c in checks]
-    with open(csv_path, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(header)
-        writer.writerows(rows)
     n_fail = sum(not c.passed for c in checks)
-    lines = ["# Printed equations checked symbolically", "",
-             f"{len(checks)} checks, {len(checks) - n_fail} PASS, {n_fail} FAIL.", "",
-             "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |" for row in rows]
-    Path(md_path).write_text("\n".join(lines) + "\n", encoding="utf-8")
+    rows = [{"paper": c.paper, "equation": c.equation, "check": c.description,
+             "status": c.status, "difference": c.difference} for c in checks]
+    write_table(rows, csv_path, md_path, title="Printed equations checked symbolically",
+                notes=[f"{len(checks)} checks, {len(checks) - n_fail} PASS, {n_fail} FAIL."])

@@ -1,0 +1,23 @@
+# rotorvib: reproduction of three rotor-dynamics papers (see README.md).
+# `snakemake -j2` builds everything (rule all); `snakemake -j2 archive` packs the results.
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/paper_c.smk"
+include: "workflow/rules/comparison.smk"
+include: "workflow/rules/archive.smk"
+
+
+rule all:
+    input:
+        all_results(),
+    default_target: True

@@ -1,0 +1,98 @@
+"""Archive of the pipeline's results: one tarball, a SHA-256 manifest and restore notes.
+
+The archive holds the files under their repository paths (``results/...``) plus
+``results/ARCHIVE_MANIFEST.sha256`` (``sha256sum -c`` format) and ``results/ARCHIVE_README.md``.
+"""
+
+from __future__ import annotations
+
+import gzip
+import hashlib
+import io
+import tarfile
+from pathlib import Path
+
+MANIFEST = "results/ARCHIVE_MANIFEST.sha256"
+README = "results/ARCHIVE_README.md"
+
+RESTORE_NOTES = """# rotorvib results archive
+
+This archive holds every dataset (netCDF), table and figure of one run of the rotorvib
+workflow, under their paths in the repository.
+
+## Restore without recomputing
+
+From the root of a clone of the repository at the commit recorded in the datasets
+(attribute `provenance_git_commit`):
+
+    tar -xzf rotorvib-results.tar.gz
+    sha256sum -c results/ARCHIVE_MANIFEST.sha256    # every file must say OK
+    snakemake -j1 --touch                            # mark the restored files up to date
+    snakemake -n                                     # "Nothing to be done"
+
+`--touch` only updates timestamps; no job runs. After that, changing a parameter in
+`config/config.yaml` reruns exactly the jobs that depend on it, as in a fresh run.
+
+## Contents
+
+{count} files; SHA-256 of each in `ARCHIVE_MANIFEST.sha256`.
+"""
+
+
+def sha256_file(path: str | Path) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _add_text(tar: tarfile.TarFile, name: str, text: str) -> None:
+    data = text.encode()
+    info = tarfile.TarInfo(name)
+    info.size = len(data)
+    info.mode = 0o644
+    tar.addfile(info, io.BytesIO(data))
+
+
+def make_archive(files: list[str | Path], output: str | Path) -> Path:
+    """Pack ``files`` (paths relative to the repository root) with manifest and README."""
+    files = sorted({Path(f).as_posix() for f in files})
+    manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files)
+    output = Path(output)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    with open(output, "wb") as raw, gzip.GzipFile(fileobj=raw, mode="wb", mtime=0) as gz, \
+            tarfile.open(fileobj=gz, mode="w", format=tarfile.PAX_FORMAT) as tar:
+        for f in files:
+            tar.add(f, arcname=f, recursive=False, filter=_anonymise)
+        _add_text(tar, MANIFEST, manifest)
+        _add_text(tar, README, RESTORE_NOTES.format(count=len(files)))
+    return output
+
+
+def _anonymise(info: tarfile.TarInfo) -> tarfile.TarInfo:
+    info.uid = info.gid = 0
+    info.uname = info.gname = ""
+    return info
+
+
+def verify_archive(path: str | Path) -> list[str]:
+    """Check every member against the manifest; return the archived file paths.
+
+    Raises ``ValueError`` on a missing, extra or corrupted member.
+    """
+    with tarfile.open(path, "r:gz") as tar:
+        members = {m.name: m for m in tar.getmembers() if m.isfile()}
+        expected = {}
+        for line in tar.extractfile(members.pop(MANIFEST)).read().decode().splitlines():
+            digest, name = line.split("  ", 1)
+            expected[name] = digest
+        members.pop(README)
+        if set(members) != set(expected):
+            raise ValueError(f"archive members {sorted(set(members) ^ set(expected))} do not "
+                             "match the manifest")
+        for name, member in members.items():
+            actual = hashlib.sha256(tar.extractfile(member).read()).hexdigest()
+            if actual != expected[name]:
+                raise ValueError(f"{name}: SHA-256 {actual} does not match the manifest")
+    return sorted(expected)

@@ -1,0 +1,36 @@
+"""Small result tables written twice: CSV for machines, Markdown for people (and the report)."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+
+def _cell(value) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return str(value)
+
+
+def write_table(rows: list[dict], csv_path: str | Path, md_path: str | Path, *, title: str,
+                notes: list[str] = (), markdown_cells=None) -> None:
+    """Write ``rows`` (dicts with the same keys, in column order) as CSV and Markdown.
+
+    CSV cells keep full precision; Markdown cells use 4 significant digits unless
+    ``markdown_cells(row) -> dict`` overrides some of them.
+    """
+    columns = list(rows[0]) if rows else []
+    with open(csv_path, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, fieldnames=columns, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows({k: ("" if v is None else v) for k, v in row.items()} for row in rows)
+    lines = [f"# {title}", ""] + [line for note in notes for line in (note, "")]
+    lines += ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for row in rows:
+        cells = {k: _cell(v) for k, v in row.items()}
+        if markdown_cells is not None:
+            cells.update(markdown_cells(row))
+        lines.append("| " + " | ".join(cells[k].replace("|", "\\|") for k in columns) + " |")
+    Path(md_path).write_text("\n".join(lines) + "\n", encoding="utf-8")

@@ -1,0 +1,26 @@
+# The side-by-side table of every value the papers state against the reproduction.
+
+
+rule comparison:
+    input:
+        paper_values=PAPER_VALUES,
+        reproduced=["results/paper_c/reproduced.csv"],
+    output:
+        csv=report(
+            "results/comparison.csv",
+            caption="../report/comparison.rst",
+            category="Comparison",
+        ),
+        md="results/comparison.md",
+    params:
+        code=code("comparison"),
+    log:
+        "results/logs/comparison.log",
+    threads: 1
+    resources:
+        runtime=5,
+        mem_mb=500,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/comparison.py"

@@ -1,0 +1,289 @@
+# Paper C: dual dynamic vibration absorber on a torsional rotor.
+# config key -> rule -> script -> library function -> dataset -> figure.
+
+
+rule c_derivation_checks:
+    output:
+        csv=report(
+            f"{C_TAB}/derivation_checks.csv",
+            caption="../report/c_derivation_checks.rst",
+            category="Paper C",
+            subcategory="Tables",
+        ),
+        md=f"{C_TAB}/derivation_checks.md",
+    params:
+        code=code("c_derivation"),
+    log:
+        "results/logs/c_derivation_checks.log",
+    benchmark:
+        "results/benchmarks/c_derivation_checks.tsv"
+    threads: 1
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_derivation_checks.py"
+
+
+rule c_ga:
+    output:
+        f"{C_DATA}/ga.nc",
+    params:
+        rotor=C["rotor"],
+        table2=C["table2"],
+        bounds=C["bounds"],
+        ga=C["ga"],
+        code=code("io", "c_model", "c_ga"),
+    log:
+        "results/logs/c_ga.log",
+    benchmark:
+        "results/benchmarks/c_ga.tsv"
+    threads: 1
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_ga.py"
+
+
+rule c_frequency_response:
+    input:
+        ga=f"{C_DATA}/ga.nc",
+    output:
+        f"{C_DATA}/frequency_response.nc",
+    params:
+        rotor=C["rotor"],
+        table2=C["table2"],
+        grid=C["frequency_response"],
+        code=code("io", "c_model"),
+    log:
+        "results/logs/c_frequency_response.log",
+    benchmark:
+        "results/benchmarks/c_frequency_response.tsv"
+    threads: 1
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_frequency_response.py"
+
+
+rule c_mass_ratio:
+    output:
+        f"{C_DATA}/mass_ratio.nc",
+    params:
+        rotor=C["rotor"],
+        table2=C["table2"],
+        grid=C["frequency_response"],
+        family=C["mass_ratio_family"],
+        code=code("io", "c_model"),
+    log:
+        "results/logs/c_mass_ratio.log",
+    benchmark:
+        "results/benchmarks/c_mass_ratio.tsv"
+    threads: 1
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_mass_ratio.py"
+
+
+rule c_time_response:
+    output:
+        f"{C_DATA}/time_response.nc",
+    params:
+        rotor=C["rotor"],
+        table2=C["table2"],
+        den_hartog=C["den_hartog"],
+        time=C["time_response"],
+        code=code("io", "c_model"),
+    log:
+        "results/logs/c_time_response.log",
+    benchmark:
+        "results/benchmarks/c_time_response.tsv"
+    threads: 1
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_time_response.py"
+
+
+rule c_table2:
+    input:
+        ga=f"{C_DATA}/ga.nc",
+    output:
+        csv=report(
+            f"{C_TAB}/table2.csv",
+            caption="../report/c_table2.rst",
+            category="Paper C",
+            subcategory="Tables",
+        ),
+        md=f"{C_TAB}/table2.md",
+    params:
+        code=code("c_claims"),
+    log:
+        "results/logs/c_table2.log",
+    threads: 1
+    resources:
+        runtime=5,
+        mem_mb=500,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_table2.py"
+
+
+rule c_reproduced_values:
+    input:
+        ga=f"{C_DATA}/ga.nc",
+        fr=f"{C_DATA}/frequency_response.nc",
+        mr=f"{C_DATA}/mass_ratio.nc",
+        tr=f"{C_DATA}/time_response.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        "results/paper_c/reproduced.csv",
+    params:
+        rotor=C["rotor"],
+        claims=C["claims"],
+        code=code("c_claims"),
+    log:
+        "results/logs/c_reproduced_values.log",
+    threads: 1
+    resources:
+        runtime=5,
+        mem_mb=1000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_reproduced_values.py"
+
+
+# --- figures: one rule each, datasets in, PNG out -----------------------------------------
+
+
+rule c_fig3:
+    input:
+        tr=f"{C_DATA}/time_response.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(f"{C_FIG}/fig3.png", caption="../report/c_fig3.rst", category="Paper C", subcategory="Figures"),
+    params:
+        figure="fig3",
+        options={"t_at": C["claims"]["fig3_time"]},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_fig3.log",
+    threads: 1
+    resources:
+        runtime=5,
+        mem_mb=1000,
+    conda:
+        "../envs/rotorvib.yaml"
+    script:
+        "../scripts/c_figure.py"
+
+
+use rule c_fig3 as c_fig4 with:
+    input:
+        tr=f"{C_DATA}/time_response.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(f"{C_FIG}/fig4.png", caption="../report/c_fig4.rst", category="Paper C", subcategory="Figures"),
+    params:
+        figure="fig4",
+        options={},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_fig4.log",
+
+
+use rule c_fig3 as c_linearisation with:
+    input:
+        tr=f"{C_DATA}/time_response.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(
+            f"{C_FIG}/linearisation.png",
+            caption="../report/c_linearisation.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
+    params:
+        figure="linearisation",
+        options={},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_linearisation.log",
+
+
+use rule c_fig3 as c_fig5 with:
+    input:
+        fr=f"{C_DATA}/frequency_response.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(f"{C_FIG}/fig5.png", caption="../report/c_fig5.rst", category="Paper C", subcategory="Figures"),
+    params:
+        figure="fig5",
+        options={},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_fig5.log",
+
+
+use rule c_fig3 as c_fig6 with:
+    input:
+        mr=f"{C_DATA}/mass_ratio.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(f"{C_FIG}/fig6.png", caption="../report/c_fig6.rst", category="Paper C", subcategory="Figures"),
+    params:
+        figure="fig6",
+        options={},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_fig6.log",
+
+
+use rule c_fig3 as c_fig7 with:
+    input:
+        tr=f"{C_DATA}/time_response.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(f"{C_FIG}/fig7.png", caption="../report/c_fig7.rst", category="Paper C", subcategory="Figures"),
+    params:
+        figure="fig7",
+        options={},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_fig7.log",
+
+
+use rule c_fig3 as c_ga_convergence with:
+    input:
+        ga=f"{C_DATA}/ga.nc",
+        paper_values=PAPER_VALUES,
+    output:
+        report(
+            f"{C_FIG}/ga_convergence.png",
+            caption="../report/c_ga_convergence.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
+    params:
+        figure="ga_convergence",
+        options={},
+        code=code("c_figures"),
+    log:
+        "results/logs/c_ga_convergence.log",

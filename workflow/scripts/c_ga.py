@@ -1,0 +1,23 @@
+"""Rule c_ga: genetic-algorithm tuning of the dual absorber (paper C, section 4)."""
+
+import sys
+
+from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.dva.optimise import tune_dual_absorber
+from rotorvib.dva.parameters import Rotor, dual_absorber
+from rotorvib.dva.studies import ga_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+rotor = Rotor(**p.rotor)
+
+
+def progress(generation, best):
+    if generation % 10 == 0 or generation == p.ga["n_gen"]:
+        print(f"generation {generation}/{p.ga['n_gen']}: best |Theta| = {best:.4g} rad",
+              file=sys.stderr)
+
+
+result = tune_dual_absorber(rotor, p.bounds, **p.ga, progress=progress)
+ds = ga_dataset(rotor, result, dual_absorber(**p.table2), p.bounds)
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items()), p.ga["seed"]))

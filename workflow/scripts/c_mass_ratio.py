@@ -1,0 +1,15 @@
+"""Rule c_mass_ratio: Fig 6's mass-ratio family (paper C)."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.dva.parameters import Rotor, dual_absorber
+from rotorvib.dva.studies import mass_ratio_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])
+ds = mass_ratio_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), p.family["mu"], w)
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

@@ -1,0 +1,17 @@
+"""Rule c_reproduced_values: every stated value and claim of paper C, measured on the datasets."""
+
+import sys
+
+import xarray as xr
+
+from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.dva.claims import reproduce
+from rotorvib.dva.parameters import Rotor
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+rotor = Rotor(**p.rotor)
+data = {name: xr.load_dataset(snakemake.input[name]) for name in ("ga", "fr", "mr", "tr")}
+rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
+                 paper_values=paper_values_of(snakemake.input.paper_values, "C"))
+write_reproduced(rows, snakemake.output[0])

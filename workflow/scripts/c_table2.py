@@ -1,0 +1,13 @@
+"""Rule c_table2: Table 2 beside the optimum the genetic algorithm finds."""
+
+import sys
+
+import xarray as xr
+
+from rotorvib.dva.claims import table2_side_by_side
+from rotorvib.tables import write_table
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+rows = table2_side_by_side(xr.load_dataset(snakemake.input.ga))
+write_table(rows, snakemake.output.csv, snakemake.output.md,
+            title="Table 2 of paper C beside the genetic-algorithm optimum")

@@ -1,0 +1,13 @@
+"""Rule c_time_response: Figs 3, 4, 7 time responses, linear (14) and nonlinear (8)-(10)."""
+
+import sys
+
+from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.dva.parameters import Rotor, dual_absorber
+from rotorvib.dva.studies import time_response_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+ds = time_response_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), p.den_hartog["d"],
+                           **p.time)
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
