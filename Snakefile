@@ -18,6 +18,6 @@ include: "workflow/rules/archive.smk"
 
 
 rule all:
+    default_target: True
     input:
         all_results(),
-    default_target: True

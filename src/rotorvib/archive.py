@@ -6,6 +6,7 @@ The archive holds the files under their repository paths (``results/...``) plus
 
 from __future__ import annotations
 
+import base64
 import gzip
 import hashlib
 import io
@@ -13,6 +14,9 @@ import tarfile
 from pathlib import Path
 
 MANIFEST = "results/ARCHIVE_MANIFEST.sha256"
+#: Snakemake's per-output records (params, code and input hashes), kept so that a restored
+#: archive still reruns exactly the jobs a later config or code change affects.
+METADATA_DIR = ".snakemake/metadata"
 README = "results/ARCHIVE_README.md"
 
 RESTORE_NOTES = """# rotorvib results archive
@@ -30,8 +34,9 @@ From the root of a clone of the repository at the commit recorded in the dataset
     snakemake -j1 --touch                            # mark the restored files up to date
     snakemake -n                                     # "Nothing to be done"
 
-`--touch` only updates timestamps; no job runs. After that, changing a parameter in
-`config/config.yaml` reruns exactly the jobs that depend on it, as in a fresh run.
+`--touch` only updates timestamps; no job runs. The archive also carries Snakemake's records
+of the jobs (`.snakemake/metadata/`), so after restoring, changing a parameter in
+`config/config.yaml` reruns exactly the jobs that depend on it, as after a fresh run.
 
 ## Contents
 
@@ -55,9 +60,17 @@ def _add_text(tar: tarfile.TarFile, name: str, text: str) -> None:
     tar.addfile(info, io.BytesIO(data))
 
 
+def job_records(files) -> list[str]:
+    """Snakemake's metadata record of each file, where one exists (see METADATA_DIR)."""
+    names = (f"{METADATA_DIR}/{base64.urlsafe_b64encode(f.encode()).decode()}" for f in files)
+    return [n for n in names if Path(n).is_file()]
+
+
 def make_archive(files: list[str | Path], output: str | Path) -> Path:
-    """Pack ``files`` (paths relative to the repository root) with manifest and README."""
+    """Pack ``files`` (paths relative to the repository root) with their Snakemake job
+    records, a manifest and a README."""
     files = sorted({Path(f).as_posix() for f in files})
+    files += job_records(files)
     manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files)
     output = Path(output)
     output.parent.mkdir(parents=True, exist_ok=True)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import importlib.metadata
 import subprocess
 from pathlib import Path
@@ -35,21 +34,26 @@ def package_versions(names=RECORDED_PACKAGES) -> dict[str, str]:
     return versions
 
 
-def source_fingerprint(*modules: str) -> str:
-    """SHA-256 over the source files of the named modules or packages (recursively).
+def source_fingerprint(*modules: str, root: str | Path = "src") -> str:
+    """SHA-256 over the source files of the named modules or packages under ``root``.
 
-    Used as a Snakemake ``params`` value so that editing library code under ``src/`` reruns
-    exactly the jobs whose code changed.
+    ``"rotorvib.dva.figures"`` hashes ``root/rotorvib/dva/figures.py``; a package name hashes
+    every ``.py`` file below it.  Files are read, not imported, so the hash follows the work
+    tree the workflow runs in.  Used as a Snakemake ``params`` value so that editing library
+    code under ``src/`` reruns exactly the jobs whose code changed.
     """
+    root = Path(root)
     files = []
     for name in modules:
-        spec = importlib.util.find_spec(name)
-        if spec is None or spec.origin is None:
-            raise ModuleNotFoundError(f"cannot fingerprint unknown module {name!r}")
-        origin = Path(spec.origin)
-        files += sorted(origin.parent.rglob("*.py")) if origin.name == "__init__.py" else [origin]
+        base = root.joinpath(*name.split("."))
+        if base.with_suffix(".py").is_file():
+            files.append(base.with_suffix(".py"))
+        elif (base / "__init__.py").is_file():
+            files += sorted(base.rglob("*.py"))
+        else:
+            raise ModuleNotFoundError(f"no source for module {name!r} under {root}")
     digest = hashlib.sha256()
     for path in sorted(set(files)):
-        digest.update(path.name.encode())
+        digest.update(path.relative_to(root).as_posix().encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()

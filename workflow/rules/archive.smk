@@ -7,15 +7,15 @@ rule archive:
         all_results(),
     output:
         "results/archive/rotorvib-results.tar.gz",
-    params:
-        code=code("archive"),
     log:
         "results/logs/archive.log",
+    conda:
+        "../envs/rotorvib.yaml"
     threads: 1
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/rotorvib.yaml"
+    params:
+        code=code("archive"),
     script:
         "../scripts/archive.py"

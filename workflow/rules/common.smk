@@ -48,8 +48,15 @@ C_FIGURES = ["fig3", "fig4", "fig5", "fig6", "fig7", "ga_convergence", "linearis
 def paper_c_results():
     return (
         expand(f"{C_FIG}/{{fig}}.png", fig=C_FIGURES)
-        + expand(f"{C_TAB}/{{table}}.{{ext}}", table=["derivation_checks", "table2"], ext=["csv", "md"])
-        + [f"{C_DATA}/{name}.nc" for name in ("ga", "frequency_response", "mass_ratio", "time_response")]
+        + expand(
+            f"{C_TAB}/{{table}}.{{ext}}",
+            table=["derivation_checks", "table2"],
+            ext=["csv", "md"],
+        )
+        + [
+            f"{C_DATA}/{name}.nc"
+            for name in ("ga", "frequency_response", "mass_ratio", "time_response")
+        ]
     )
 
 

@@ -12,15 +12,15 @@ rule comparison:
             category="Comparison",
         ),
         md="results/comparison.md",
-    params:
-        code=code("comparison"),
     log:
         "results/logs/comparison.log",
+    conda:
+        "../envs/rotorvib.yaml"
     threads: 1
     resources:
         runtime=5,
         mem_mb=500,
-    conda:
-        "../envs/rotorvib.yaml"
+    params:
+        code=code("comparison"),
     script:
         "../scripts/comparison.py"

@@ -11,18 +11,18 @@ rule c_derivation_checks:
             subcategory="Tables",
         ),
         md=f"{C_TAB}/derivation_checks.md",
-    params:
-        code=code("c_derivation"),
     log:
         "results/logs/c_derivation_checks.log",
     benchmark:
         "results/benchmarks/c_derivation_checks.tsv"
+    conda:
+        "../envs/rotorvib.yaml"
     threads: 1
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/rotorvib.yaml"
+    params:
+        code=code("c_derivation"),
     script:
         "../scripts/c_derivation_checks.py"
 
@@ -30,22 +30,22 @@ rule c_derivation_checks:
 rule c_ga:
     output:
         f"{C_DATA}/ga.nc",
+    log:
+        "results/logs/c_ga.log",
+    benchmark:
+        "results/benchmarks/c_ga.tsv"
+    conda:
+        "../envs/rotorvib.yaml"
+    threads: 1
+    resources:
+        runtime=20,
+        mem_mb=2000,
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         bounds=C["bounds"],
         ga=C["ga"],
         code=code("io", "c_model", "c_ga"),
-    log:
-        "results/logs/c_ga.log",
-    benchmark:
-        "results/benchmarks/c_ga.tsv"
-    threads: 1
-    resources:
-        runtime=20,
-        mem_mb=2000,
-    conda:
-        "../envs/rotorvib.yaml"
     script:
         "../scripts/c_ga.py"
 
@@ -55,21 +55,21 @@ rule c_frequency_response:
         ga=f"{C_DATA}/ga.nc",
     output:
         f"{C_DATA}/frequency_response.nc",
+    log:
+        "results/logs/c_frequency_response.log",
+    benchmark:
+        "results/benchmarks/c_frequency_response.tsv"
+    conda:
+        "../envs/rotorvib.yaml"
+    threads: 1
+    resources:
+        runtime=10,
+        mem_mb=1000,
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         grid=C["frequency_response"],
         code=code("io", "c_model"),
-    log:
-        "results/logs/c_frequency_response.log",
-    benchmark:
-        "results/benchmarks/c_frequency_response.tsv"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=1000,
-    conda:
-        "../envs/rotorvib.yaml"
     script:
         "../scripts/c_frequency_response.py"
 
@@ -77,22 +77,22 @@ rule c_frequency_response:
 rule c_mass_ratio:
     output:
         f"{C_DATA}/mass_ratio.nc",
+    log:
+        "results/logs/c_mass_ratio.log",
+    benchmark:
+        "results/benchmarks/c_mass_ratio.tsv"
+    conda:
+        "../envs/rotorvib.yaml"
+    threads: 1
+    resources:
+        runtime=10,
+        mem_mb=1000,
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         grid=C["frequency_response"],
         family=C["mass_ratio_family"],
         code=code("io", "c_model"),
-    log:
-        "results/logs/c_mass_ratio.log",
-    benchmark:
-        "results/benchmarks/c_mass_ratio.tsv"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=1000,
-    conda:
-        "../envs/rotorvib.yaml"
     script:
         "../scripts/c_mass_ratio.py"
 
@@ -100,22 +100,22 @@ rule c_mass_ratio:
 rule c_time_response:
     output:
         f"{C_DATA}/time_response.nc",
+    log:
+        "results/logs/c_time_response.log",
+    benchmark:
+        "results/benchmarks/c_time_response.tsv"
+    conda:
+        "../envs/rotorvib.yaml"
+    threads: 1
+    resources:
+        runtime=20,
+        mem_mb=2000,
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         den_hartog=C["den_hartog"],
         time=C["time_response"],
         code=code("io", "c_model"),
-    log:
-        "results/logs/c_time_response.log",
-    benchmark:
-        "results/benchmarks/c_time_response.tsv"
-    threads: 1
-    resources:
-        runtime=20,
-        mem_mb=2000,
-    conda:
-        "../envs/rotorvib.yaml"
     script:
         "../scripts/c_time_response.py"
 
@@ -131,16 +131,16 @@ rule c_table2:
             subcategory="Tables",
         ),
         md=f"{C_TAB}/table2.md",
-    params:
-        code=code("c_claims"),
     log:
         "results/logs/c_table2.log",
+    conda:
+        "../envs/rotorvib.yaml"
     threads: 1
     resources:
         runtime=5,
         mem_mb=500,
-    conda:
-        "../envs/rotorvib.yaml"
+    params:
+        code=code("c_claims"),
     script:
         "../scripts/c_table2.py"
 
@@ -154,18 +154,18 @@ rule c_reproduced_values:
         paper_values=PAPER_VALUES,
     output:
         "results/paper_c/reproduced.csv",
-    params:
-        rotor=C["rotor"],
-        claims=C["claims"],
-        code=code("c_claims"),
     log:
         "results/logs/c_reproduced_values.log",
+    conda:
+        "../envs/rotorvib.yaml"
     threads: 1
     resources:
         runtime=5,
         mem_mb=1000,
-    conda:
-        "../envs/rotorvib.yaml"
+    params:
+        rotor=C["rotor"],
+        claims=C["claims"],
+        code=code("c_claims"),
     script:
         "../scripts/c_reproduced_values.py"
 
@@ -178,19 +178,24 @@ rule c_fig3:
         tr=f"{C_DATA}/time_response.nc",
         paper_values=PAPER_VALUES,
     output:
-        report(f"{C_FIG}/fig3.png", caption="../report/c_fig3.rst", category="Paper C", subcategory="Figures"),
-    params:
-        figure="fig3",
-        options={"t_at": C["claims"]["fig3_time"]},
-        code=code("c_figures"),
+        report(
+            f"{C_FIG}/fig3.png",
+            caption="../report/c_fig3.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
     log:
         "results/logs/c_fig3.log",
+    conda:
+        "../envs/rotorvib.yaml"
     threads: 1
     resources:
         runtime=5,
         mem_mb=1000,
-    conda:
-        "../envs/rotorvib.yaml"
+    params:
+        figure="fig3",
+        options={"t_at": C["claims"]["fig3_time"]},
+        code=code("c_figures"),
     script:
         "../scripts/c_figure.py"
 
@@ -200,13 +205,18 @@ use rule c_fig3 as c_fig4 with:
         tr=f"{C_DATA}/time_response.nc",
         paper_values=PAPER_VALUES,
     output:
-        report(f"{C_FIG}/fig4.png", caption="../report/c_fig4.rst", category="Paper C", subcategory="Figures"),
+        report(
+            f"{C_FIG}/fig4.png",
+            caption="../report/c_fig4.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
+    log:
+        "results/logs/c_fig4.log",
     params:
         figure="fig4",
         options={},
         code=code("c_figures"),
-    log:
-        "results/logs/c_fig4.log",
 
 
 use rule c_fig3 as c_linearisation with:
@@ -220,12 +230,12 @@ use rule c_fig3 as c_linearisation with:
             category="Paper C",
             subcategory="Figures",
         ),
+    log:
+        "results/logs/c_linearisation.log",
     params:
         figure="linearisation",
         options={},
         code=code("c_figures"),
-    log:
-        "results/logs/c_linearisation.log",
 
 
 use rule c_fig3 as c_fig5 with:
@@ -233,13 +243,18 @@ use rule c_fig3 as c_fig5 with:
         fr=f"{C_DATA}/frequency_response.nc",
         paper_values=PAPER_VALUES,
     output:
-        report(f"{C_FIG}/fig5.png", caption="../report/c_fig5.rst", category="Paper C", subcategory="Figures"),
+        report(
+            f"{C_FIG}/fig5.png",
+            caption="../report/c_fig5.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
+    log:
+        "results/logs/c_fig5.log",
     params:
         figure="fig5",
         options={},
         code=code("c_figures"),
-    log:
-        "results/logs/c_fig5.log",
 
 
 use rule c_fig3 as c_fig6 with:
@@ -247,13 +262,18 @@ use rule c_fig3 as c_fig6 with:
         mr=f"{C_DATA}/mass_ratio.nc",
         paper_values=PAPER_VALUES,
     output:
-        report(f"{C_FIG}/fig6.png", caption="../report/c_fig6.rst", category="Paper C", subcategory="Figures"),
+        report(
+            f"{C_FIG}/fig6.png",
+            caption="../report/c_fig6.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
+    log:
+        "results/logs/c_fig6.log",
     params:
         figure="fig6",
         options={},
         code=code("c_figures"),
-    log:
-        "results/logs/c_fig6.log",
 
 
 use rule c_fig3 as c_fig7 with:
@@ -261,13 +281,18 @@ use rule c_fig3 as c_fig7 with:
         tr=f"{C_DATA}/time_response.nc",
         paper_values=PAPER_VALUES,
     output:
-        report(f"{C_FIG}/fig7.png", caption="../report/c_fig7.rst", category="Paper C", subcategory="Figures"),
+        report(
+            f"{C_FIG}/fig7.png",
+            caption="../report/c_fig7.rst",
+            category="Paper C",
+            subcategory="Figures",
+        ),
+    log:
+        "results/logs/c_fig7.log",
     params:
         figure="fig7",
         options={},
         code=code("c_figures"),
-    log:
-        "results/logs/c_fig7.log",
 
 
 use rule c_fig3 as c_ga_convergence with:
@@ -281,9 +306,9 @@ use rule c_fig3 as c_ga_convergence with:
             category="Paper C",
             subcategory="Figures",
         ),
+    log:
+        "results/logs/c_ga_convergence.log",
     params:
         figure="ga_convergence",
         options={},
         code=code("c_figures"),
-    log:
-        "results/logs/c_ga_convergence.log",

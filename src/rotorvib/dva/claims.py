@@ -143,7 +143,7 @@ def frequency_rows(fr: xr.Dataset, mr: xr.Dataset, claims: dict) -> list[Reprodu
 
 
 def time_rows(tr: xr.Dataset, omega_n: float, claims: dict, paper: dict) -> list[Reproduced]:
-    t = tr.time.values
+    t = tr.t.values
     period = 2 * np.pi / omega_n
     nonlin = int(np.flatnonzero(tr.model_name.values == "nonlinear eqs. (8)-(10)")[0])
     th = {case: tr[f"theta_{case}"].values[nonlin] for case in ("none", "single", "dual")}

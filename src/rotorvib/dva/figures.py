@@ -19,7 +19,7 @@ COLORS = {"none": "C0", "single": "C1", "dual": "C2"}
 def fig3(tr, paper, t_at: float):
     """Fig 3: rotor without absorber driven at omega_n; the paper's amplitude at ``t_at``."""
     fig, ax = figure()
-    t = tr.time.values
+    t = tr.t.values
     ax.plot(t, tr.theta_none.values[NONLINEAR], lw=0.5, label="theta(t), eqs. (8)-(10)")
     env = tr.theta_none_exact_envelope.values
     ax.plot(t, env, "k:", lw=1.2, label="exact envelope Gamma0 t/(2 J omega_n)")
@@ -34,7 +34,7 @@ def fig3(tr, paper, t_at: float):
 def fig4(tr, paper):
     """Fig 4: no absorber, Den Hartog single absorber, Table 2 dual absorber at resonance."""
     fig, (ax1, ax2) = figure(2, 1, figsize=(7.0, 6.2), sharex=True)
-    t = tr.time.values
+    t = tr.t.values
     for case, label in CASES.items():
         ax1.plot(t, tr[f"theta_{case}"].values[NONLINEAR], lw=0.5, color=COLORS[case], label=label)
     for case in ("dual", "single"):
@@ -50,7 +50,7 @@ def fig4(tr, paper):
 def linearisation(tr, paper):
     """Difference between the nonlinear (8)-(10) and the linear (14) responses."""
     fig, ax = figure()
-    t = tr.time.values
+    t = tr.t.values
     for case, label in CASES.items():
         gap = np.abs(np.diff(tr[f"theta_{case}"].values, axis=0)[0])
         ax.semilogy(t[1:], np.maximum(gap[1:], 1e-18), lw=0.6, color=COLORS[case], label=label)
@@ -97,7 +97,7 @@ def fig6(mr, paper):
 def fig7(tr, paper):
     """Fig 7: absorber displacements of the Table 2 dual absorber at resonance."""
     fig, ax = figure()
-    t = tr.time.values
+    t = tr.t.values
     for j in (1, 2):
         ax.plot(t, 1e3 * tr[f"s{j}_dual"].values[NONLINEAR], lw=0.5, label=f"absorber set {j}")
     ax.set(xlabel="time t (s)", ylabel="absorber displacement (mm)",

@@ -155,14 +155,14 @@ def time_response_dataset(rotor: Rotor, table2, d_single: float, *, t_end: float
     for case, sets in cases.items():
         q = np.stack([simulate(rotor, sets, rotor.omega_n, t, model=m, rtol=rtol, atol=atol)
                       for m in models])
-        data[f"theta_{case}"] = (("model", "time"), q[..., 0],
+        data[f"theta_{case}"] = (("model", "t"), q[..., 0],
                                  {"long_name": f"disk twist angle theta, absorber: {case}",
                                   "units": "rad"})
         for j in range(1, q.shape[-1]):
-            data[f"s{j}_{case}"] = (("model", "time"), q[..., j],
+            data[f"s{j}_{case}"] = (("model", "t"), q[..., j],
                                     {"long_name": f"displacement of absorber set {j}, "
                                      f"absorber: {case}", "units": "m"})
-    data["theta_none_exact_envelope"] = ("time", undamped_resonance_envelope(rotor, t),
+    data["theta_none_exact_envelope"] = ("t", undamped_resonance_envelope(rotor, t),
                                          {"long_name": "exact envelope Gamma0 t/(2 J omega_n) of "
                                           "the undamped rotor at resonance", "units": "rad"})
     for name in "mkcd":
@@ -171,7 +171,7 @@ def time_response_dataset(rotor: Rotor, table2, d_single: float, *, t_end: float
                                    "units": _UNITS[name]})
     return xr.Dataset(
         data,
-        coords={"time": ("time", t, {"long_name": "time", "units": "s", "standard_name": "time"}),
+        coords={"t": ("t", t, {"long_name": "time since the start of the forcing", "units": "s"}),
                 "model_name": ("model", np.array(["linear eq. (14)", "nonlinear eqs. (8)-(10)"],
                                                  dtype=object),
                                {"long_name": "equations integrated"})},

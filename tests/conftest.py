@@ -1,0 +1,42 @@
+"""Shared fixtures: paper C's rotor and Table 2 from the repository's configuration."""
+
+from pathlib import Path
+
+import pytest
+
+from rotorvib.config import load_yaml, validate_config
+from rotorvib.dva.parameters import Rotor, dual_absorber
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def config():
+    return validate_config(load_yaml(ROOT / "config/config.yaml"),
+                           load_yaml(ROOT / "config/schema.yaml"))
+
+
+@pytest.fixture(scope="session")
+def schema():
+    return load_yaml(ROOT / "config/schema.yaml")
+
+
+@pytest.fixture(scope="session")
+def rotor(config):
+    return Rotor(**config["paper_c"]["rotor"])
+
+
+@pytest.fixture(scope="session")
+def table2(config):
+    return dual_absorber(**config["paper_c"]["table2"])
+
+
+def cf_check(path):
+    """Run the compliance-checker (CF 1.11) on ``path``; return (passed, report)."""
+    import subprocess
+    import sys
+
+    checker = Path(sys.executable).parent / "compliance-checker"
+    run = subprocess.run([str(checker), "--test", "cf:1.11", "--criteria", "normal", str(path)],
+                         capture_output=True, text=True)
+    return run.returncode == 0, run.stdout

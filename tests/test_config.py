@@ -1,0 +1,48 @@
+import copy
+
+import pytest
+
+from rotorvib.config import ConfigError, config_hash, validate_config
+
+
+def _broken(config, mutate):
+    bad = copy.deepcopy(config)
+    mutate(bad)
+    return bad
+
+
+def test_repository_config_is_valid_and_defaults_are_filled(config, schema):
+    raw = copy.deepcopy(config)
+    del raw["paper_c"]["ga"]["sbx_eta"]
+    filled = validate_config(raw, schema)
+    assert filled["paper_c"]["ga"]["sbx_eta"] == schema["properties"]["paper_c"]["properties"][
+        "ga"]["properties"]["sbx_eta"]["default"]
+
+
+@pytest.mark.parametrize("mutate, expected", [
+    (lambda c: c["paper_c"]["rotor"].update(M=-1.0),
+     ["'paper_c.rotor.M'", "-1.0", "> 0", "disk mass, kg"]),
+    (lambda c: c["paper_c"]["ga"].update(pop_size="many"),
+     ["'paper_c.ga.pop_size'", "'many'", "an integer", ">= 4"]),
+    (lambda c: c["paper_c"]["ga"].update(pop_size=2.5), ["'paper_c.ga.pop_size'", "an integer"]),
+    (lambda c: c["paper_c"]["rotor"].update(mass=5.0),
+     ["'paper_c.rotor'", "unknown key(s) 'mass'", "allowed keys: Gamma0, J_factor, M, R, k_t"]),
+    (lambda c: c["paper_c"]["rotor"].pop("k_t"), ["'paper_c.rotor.k_t' is missing", "N m/rad"]),
+    (lambda c: c["paper_c"]["bounds"].update(m=[0.5, 0.05]),
+     ["'paper_c.bounds.m'", "lower < upper"]),
+    (lambda c: c["paper_c"]["bounds"].update(m=[0.5]), ["'paper_c.bounds.m'", "a list of 2 items"]),
+    (lambda c: c["paper_c"]["frequency_response"].update(w_min=1.5),
+     ["'paper_c.frequency_response.w_min'", "smaller than 'w_max'"]),
+    (lambda c: c["paper_c"]["time_response"].update(t_end=1.0),
+     ["'paper_c.claims.fig3_time'", "<= 'paper_c.time_response.t_end'"]),
+])
+def test_malformed_config_names_key_and_allowed_values(config, schema, mutate, expected):
+    with pytest.raises(ConfigError) as err:
+        validate_config(_broken(config, mutate), schema)
+    for fragment in expected:
+        assert fragment in str(err.value)
+
+
+def test_config_hash_is_canonical():
+    assert config_hash({"a": 1, "b": [1, 2]}) == config_hash({"b": [1, 2], "a": 1})
+    assert config_hash({"a": 1}) != config_hash({"a": 1.5})
