@@ -272,7 +272,7 @@ use rule c_fig3 as c_fig6 with:
         "results/logs/c_fig6.log",
     params:
         figure="fig6",
-        options={},
+        options={"w_low": C["claims"]["fig6_w_low"]},
         code=code("c_figures"),
 
 

@@ -81,13 +81,14 @@ def fig5(fr, paper):
     return fig
 
 
-def fig6(mr, paper):
-    """Fig 6: frequency response for the mass-ratio family."""
+def fig6(mr, paper, w_low: float):
+    """Fig 6: frequency response for the mass-ratio family; the paper's claim location ``w_low``."""
     fig, ax = figure()
     for mu in mr.mu.values:
         best = np.isclose(mu, paper["mu_opt"])
         ax.plot(mr.w.values, mr.D.sel(mu=mu).values, lw=2.0 if best else 1.0,
                 label=f"mu = {mu:g}" + (" (paper's optimum)" if best else ""))
+    paper_vline(ax, w_low, f"equal masses better at w = {w_low:g}")
     ax.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
            title="Fig 6: mass ratio m2/m1 (k2 = mu k1, rest as Table 2)")
     ax.legend()
