@@ -1,0 +1,1 @@
+"""Automatic ball balancer (papers A and B): one engine for both reproductions."""

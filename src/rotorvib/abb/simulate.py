@@ -1,0 +1,121 @@
+"""Public simulation API of the ball-balancer engine: one run, a trajectory, a batch.
+
+A failed integration raises :class:`~rotorvib.integrate.IntegrationError` (single runs) or is
+flagged in the ``status`` column (batches, with :func:`check_batch` to raise); a run that is not
+balanced by its end is *censored*: its balance time is NaN and ``censored`` is True.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..integrate import IntegrationError
+from . import engine
+
+#: Default tolerances, chosen from the convergence study in ``benchmarks/convergence.py``
+#: (paper B run-up: balance time within 1e-6 s and peak force within 2e-7 of rtol = 1e-12).
+RTOL, ATOL = 1e-8, 1e-11
+MAX_STEPS = 50_000_000
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """Balance time (threshold and envelope definitions) and bearing force of one run."""
+
+    balance_time: float
+    censored: bool
+    envelope_time: float
+    envelope_censored: bool
+    force_max: float
+    force_max_time: float
+    force_decay_time: float
+    force_censored: bool
+    t_end: float
+    n_steps: int
+
+    @classmethod
+    def from_metrics(cls, m, t_end) -> "RunResult":
+        return cls(balance_time=float(m[2]), censored=not m[3], envelope_time=float(m[4]),
+                   envelope_censored=not m[5], force_max=float(m[6]), force_max_time=float(m[7]),
+                   force_decay_time=float(m[8]), force_censored=not m[9], t_end=float(t_end),
+                   n_steps=int(m[1]))
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Sampled solution: ``t`` and ``y`` (rows of the form's state), with the run's result."""
+
+    t: np.ndarray
+    y: np.ndarray
+    result: RunResult
+
+    @property
+    def n_balls(self) -> int:
+        return self.y.shape[1] // 2 - 2
+
+    @property
+    def r(self) -> np.ndarray:
+        return np.hypot(self.y[:, 0], self.y[:, 1])
+
+
+def _raise_on_failure(m):
+    status = int(m[0])
+    if status != engine.OK:
+        raise IntegrationError(f"balancer integration failed: {engine.STATUS_TEXT[status]} "
+                               f"after {int(m[1])} steps")
+
+
+def run(form: int, p: np.ndarray, y0: np.ndarray, t_end: float, *, sample_dt: float,
+        r_threshold: float, f_threshold: float, rtol: float = RTOL, atol: float = ATOL,
+        store: bool = False):
+    """Integrate one run from t = 0; return a :class:`Trajectory` (``store=True``) or a
+    :class:`RunResult`."""
+    n_samples = int(np.floor(t_end / sample_dt + 1e-9)) + 1
+    out = np.empty((n_samples if store else 0, len(y0)))
+    m = engine.integrate(form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(t_end),
+                         rtol, atol, sample_dt, r_threshold, f_threshold, MAX_STEPS, out)
+    _raise_on_failure(m)
+    result = RunResult.from_metrics(m, t_end)
+    if not store:
+        return result
+    return Trajectory(t=np.arange(n_samples) * sample_dt, y=out, result=result)
+
+
+def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, t_end: float, *, sample_dt: float,
+              r_threshold: float, f_threshold: float, rtol: float = RTOL, atol: float = ATOL,
+              seed: int = 0, chunk: int = 256, progress: bool = True) -> np.ndarray:
+    """Metrics (rows of ``engine.METRICS``) of many runs, in parallel on all cores.
+
+    Runs are shuffled (seeded) so that long and short runs mix across threads, and processed in
+    chunks so that progress can be shown on stderr.  Failed runs are flagged in the ``status``
+    column, not raised: see :func:`check_batch`.
+    """
+    params = np.ascontiguousarray(params, dtype=float)
+    y0s = np.ascontiguousarray(y0s, dtype=float)
+    n = params.shape[0]
+    order = np.random.default_rng(seed).permutation(n)
+    result = np.empty((n, engine.N_METRICS))
+    for start in range(0, n, chunk):
+        idx = order[start:start + chunk]
+        result[idx] = engine.integrate_batch(form, params[idx], y0s[idx], float(t_end), rtol,
+                                             atol, sample_dt, r_threshold, f_threshold,
+                                             MAX_STEPS, np.arange(len(idx)))
+        if progress and n > chunk:
+            done = min(start + chunk, n)
+            print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
+                  file=sys.stderr, flush=True)
+    if progress and n > chunk:
+        print(file=sys.stderr)
+    return result
+
+
+def check_batch(metrics: np.ndarray) -> None:
+    """Raise :class:`IntegrationError` listing the runs of a batch that failed."""
+    failed = np.flatnonzero(metrics[:, 0] != engine.OK)
+    if failed.size:
+        kinds = {engine.STATUS_TEXT[int(s)] for s in metrics[failed, 0]}
+        raise IntegrationError(f"{failed.size} of {len(metrics)} balancer runs failed "
+                               f"({', '.join(sorted(kinds))}); first: run {failed[0]}")
