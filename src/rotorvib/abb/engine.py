@@ -348,6 +348,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
                               np.empty(ny), np.empty(ny))
     ytmp, ynew, err, ys = np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny)
     acc = _new_analysers()
+    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f0))):
+        return _metrics(acc, NON_FINITE, 0, r_threshold)
     _sample(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
     j_sample = 1
     t_sample = t0 + sample_dt
@@ -359,8 +361,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
         if steps >= max_steps:
             status = MAX_STEPS
             break
-        if h < 1e-14 * max(1.0, abs(t)):
-            status = STEP_UNDERFLOW
+        if not h >= 1e-14 * max(1.0, abs(t)):      # also catches a NaN step
+            status = STEP_UNDERFLOW if np.isfinite(h) else NON_FINITE
             break
         h = min(h, t_end - t)
         for j in range(ny):
