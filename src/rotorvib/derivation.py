@@ -36,6 +36,21 @@ def lagrange_equations(T, V, coords, t, forces) -> list[sp.Expr]:
             for q, Q in zip(coords, forces)]
 
 
+def _reduce(expr, max_ops: int = 300):
+    """Bring a difference to zero if it is one: expansion (with trigonometric sums expanded)
+    settles most; full ``simplify`` is tried only on small leftovers (it is slow on large ones,
+    which are then reported as expanded)."""
+    original = sp.expand(expr)
+    if original == 0:
+        return original
+    expr = sp.expand(sp.expand_trig(original))
+    if expr != 0 and sp.count_ops(expr) <= max_ops:
+        expr = sp.simplify(expr)
+    if expr == 0 or sp.count_ops(expr) < sp.count_ops(original):
+        return expr
+    return original
+
+
 def compare(paper: str, equation: str, description: str, derived, printed, *,
             proportional_to=None) -> Check:
     """PASS when ``derived - s * printed`` simplifies to zero.
@@ -48,7 +63,7 @@ def compare(paper: str, equation: str, description: str, derived, printed, *,
     scale = sp.Integer(1)
     if proportional_to is not None:
         scale = sp.simplify(derived.coeff(proportional_to) / printed.coeff(proportional_to))
-    diff = sp.simplify(derived / scale - printed)
+    diff = _reduce(derived / scale - printed)
     text = "0" if diff == 0 else sp.sstr(sp.factor(diff))
     if scale != 1 and diff == 0:
         text = f"0 (printed = derived / {scale})"
@@ -57,7 +72,7 @@ def compare(paper: str, equation: str, description: str, derived, printed, *,
 
 def compare_matrices(paper: str, equation: str, description: str, derived: sp.Matrix,
                      printed: sp.Matrix) -> Check:
-    diff = sp.simplify(derived - printed)
+    diff = (derived - printed).applyfunc(_reduce)
     bad = [f"[{i},{j}]: {sp.sstr(diff[i, j])}" for i in range(diff.rows)
            for j in range(diff.cols) if diff[i, j] != 0]
     return Check(paper, equation, description, not bad, "; ".join(bad) or "0")

@@ -32,6 +32,7 @@ CODE = {
     "c_derivation": ("rotorvib.derivation", "rotorvib.dva.derivation"),
     "c_figures": ("rotorvib.plotting", "rotorvib.dva.figures"),
     "c_claims": ("rotorvib.comparison", "rotorvib.dva.claims"),
+    "b_derivation": ("rotorvib.derivation", "rotorvib.abb.derivation"),
     "comparison": ("rotorvib.comparison",),
     "archive": ("rotorvib.archive",),
 }
@@ -60,5 +61,13 @@ def paper_c_results():
     )
 
 
+def paper_b_results():
+    return expand("results/paper_b/tables/derivation_checks.{ext}", ext=["csv", "md"])
+
+
 def all_results():
-    return paper_c_results() + ["results/comparison.csv", "results/comparison.md"]
+    return (
+        paper_c_results()
+        + paper_b_results()
+        + ["results/comparison.csv", "results/comparison.md"]
+    )

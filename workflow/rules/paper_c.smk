@@ -22,9 +22,10 @@ rule c_derivation_checks:
         runtime=10,
         mem_mb=1000,
     params:
+        module="rotorvib.dva.derivation",
         code=code("c_derivation"),
     script:
-        "../scripts/c_derivation_checks.py"
+        "../scripts/derivation_checks.py"
 
 
 rule c_ga:

@@ -1,0 +1,112 @@
+"""Benchmark of the ball-balancer engine against scipy's solve_ivp (issue 3).
+
+Paper B's run-up case (eq. 37 to 200 rad/s, printed kinematics, two balls, IC1, beta = 1,
+m_bar = 0.01, eps_bar = 0.012, zeta = 0.01, R = 0.1 m), 20 s.  Prints the wall time of one run
+with the engine (default tolerances) and with solve_ivp RK45 and DOP853 at rtol 1e-8 -- the plain
+baseline runs the same right-hand side as ordinary Python (``rhs_fixed.py_func``), a second one
+hands scipy the compiled right-hand side (so that ratio isolates the integrator) -- the ratios,
+the balance-time differences, the time of a 1000-run batch on all cores, and the
+cached-compilation time.
+
+    python benchmarks/balancer.py [--runs 1000]
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from rotorvib.abb import engine
+from rotorvib.abb.parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
+from rotorvib.abb.simulate import run, run_batch
+
+T_END, DT, R_THR, F_THR = 20.0, 1e-3, 1e-4, 1.0
+
+
+def case():
+    b = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012, zeta=0.01, beta=1.0)
+    p = fixed_parameters(b, SpeedProfile(200.0, "runup", 0.5, "printed"))
+    return p, fixed_state(2, r0=1e-3, theta0=0.0, phi0=np.radians([40.0, 45.0]))
+
+
+def balance_time_of(t, r):
+    above = np.flatnonzero(r >= R_THR)
+    if above.size == 0 or above[-1] == len(r) - 1:
+        return np.nan
+    i = above[-1]
+    return t[i] + (r[i] - R_THR) / (r[i] - r[i + 1]) * (t[i + 1] - t[i])
+
+
+def scipy_run(p, y0, method, compiled):
+    rhs = engine.rhs_fixed if compiled else engine.rhs_fixed.py_func
+
+    def f(t, y):
+        dy = np.empty_like(y)
+        rhs(t, y, p, dy)
+        return dy
+
+    t = np.arange(int(round(T_END / DT)) + 1) * DT
+    start = time.perf_counter()
+    sol = solve_ivp(f, (0.0, T_END), y0, method=method, rtol=1e-8, atol=1e-11, t_eval=t)
+    elapsed = time.perf_counter() - start
+    return elapsed, balance_time_of(t, np.hypot(sol.y[0], sol.y[1])), sol.nfev
+
+
+def best_of(n, fn):
+    times = []
+    for _ in range(n):
+        start = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - start)
+    return min(times), out
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=1000)
+    args = parser.parse_args()
+    p, y0 = case()
+    run(engine.FIXED, p, y0, 0.1, sample_dt=DT, r_threshold=R_THR, f_threshold=F_THR)  # compile
+    t_engine, res = best_of(5, lambda: run(engine.FIXED, p, y0, T_END, sample_dt=DT,
+                                           r_threshold=R_THR, f_threshold=F_THR))
+    print(f"{'engine (DOPRI5, rtol 1e-8, numba)':36s} {t_engine * 1e3:8.1f} ms   balance time "
+          f"{res.balance_time:.4f} s   ({res.n_steps} steps)")
+    for compiled in (False, True):
+        for method in ("RK45", "DOP853"):
+            elapsed, tb, nfev = scipy_run(p, y0, method, compiled)
+            label = f"solve_ivp {method}, {'compiled' if compiled else 'plain Python'} rhs"
+            print(f"{label:36s} {elapsed * 1e3:8.1f} ms   balance time {tb:.4f} s   "
+                  f"({nfev} evaluations)   ratio {elapsed / t_engine:5.0f}x   "
+                  f"|dt_balance| = {abs(tb - res.balance_time):.1e} s")
+    rng = np.random.default_rng(1)
+    params = np.repeat(p[None], args.runs, axis=0)
+    params[:, 6] *= rng.uniform(0.1, 1.0, args.runs)              # ball damping D
+    y0s = np.repeat(y0[None], args.runs, axis=0)
+    y0s[:, 2:4] = rng.uniform(0, 2 * np.pi, (args.runs, 2))        # initial ball angles
+    run_batch(engine.FIXED, params[:2], y0s[:2], 0.1, sample_dt=DT, r_threshold=R_THR,
+              f_threshold=F_THR, progress=False)
+    start = time.perf_counter()
+    metrics = run_batch(engine.FIXED, params, y0s, T_END, sample_dt=DT, r_threshold=R_THR,
+                        f_threshold=F_THR, progress=False)
+    batch = time.perf_counter() - start
+    print(f"batch of {args.runs} run-ups (20 s each) on all cores: {batch:.2f} s "
+          f"({np.mean(metrics[:, 3] == 1) * 100:.0f} % balanced, "
+          f"{np.sum(metrics[:, 0] != engine.OK)} failed)")
+    probe = ("import time; t = time.perf_counter(); import numpy as np; "
+             "from rotorvib.abb import engine; "
+             "from rotorvib.abb.simulate import run; "
+             "from benchmarks.balancer import case, DT, R_THR, F_THR; p, y0 = case(); "
+             "run(engine.FIXED, p, y0, 0.01, sample_dt=DT, r_threshold=R_THR, f_threshold=F_THR); "
+             "print(time.perf_counter() - t)")
+    load = float(subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                                check=True).stdout)
+    print(f"fresh process, cached compilation: import + first run {load:.2f} s")
+
+
+if __name__ == "__main__":
+    main()
