@@ -14,6 +14,7 @@ import numpy as np
 
 from ..integrate import IntegrationError
 from . import engine
+from .parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
 
 #: Default tolerances, chosen from the convergence study in ``benchmarks/convergence.py``
 #: (paper B run-up: balance time within 1e-6 s and peak force within 2e-7 of rtol = 1e-12).
@@ -58,7 +59,16 @@ class Trajectory:
 
     @property
     def r(self) -> np.ndarray:
+        """Whirl radius of the geometric centre (m in the FIXED form, units of R in ROTATING)."""
         return np.hypot(self.y[:, 0], self.y[:, 1])
+
+    def bearing_force(self, k: float, c: float) -> np.ndarray:
+        """``F = k r + c r'`` (paper B, eq. 40) at the samples (FIXED form)."""
+        n = self.n_balls
+        x, y, xd, yd = self.y[:, 0], self.y[:, 1], self.y[:, n + 2], self.y[:, n + 3]
+        r = self.r
+        rdot = np.divide(x * xd + y * yd, r, out=np.zeros_like(r), where=r > 0)
+        return k * r + c * rdot
 
 
 def _raise_on_failure(m):
@@ -82,6 +92,19 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, t_end: float, *, sample_dt: fl
     if not store:
         return result
     return Trajectory(t=np.arange(n_samples) * sample_dt, y=out, result=result)
+
+
+def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: float = 1e-3,
+             theta0: float = 0.0, sample_dt: float = 1e-3, r_threshold: float = 1e-4,
+             f_threshold: float | None = None, store: bool = False, **tolerances):
+    """Paper B's balancer from rest relative to the disk, C at ``(r0, theta0)``, balls at
+    ``phi0`` (rad) (eq. 36).  The force threshold defaults to ``k r_threshold`` (the force of
+    the balance criterion).  Returns a :class:`RunResult`, or a :class:`Trajectory` with
+    ``store=True``."""
+    y0 = fixed_state(b.n, r0=r0, theta0=theta0, phi0=phi0)
+    f_threshold = b.k * r_threshold if f_threshold is None else f_threshold
+    return run(engine.FIXED, fixed_parameters(b, profile), y0, t_end, sample_dt=sample_dt,
+               r_threshold=r_threshold, f_threshold=f_threshold, store=store, **tolerances)
 
 
 def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, t_end: float, *, sample_dt: float,
