@@ -73,6 +73,13 @@ def disk_kinematics(t, p):
 
 
 @njit(cache=True)
+def _solve_rotor(a11, a12, a22, b1, b2):
+    """The symmetric positive-definite 2x2 system left after eliminating the ball accelerations."""
+    det = a11 * a22 - a12 * a12
+    return (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+
+
+@njit(cache=True)
 def rhs_fixed(t, y, p, dy):
     """Paper B's balancer in fixed-frame Cartesian coordinates (see module docstring).
 
@@ -101,12 +108,7 @@ def rhs_fixed(t, y, p, dy):
         sc += s * co
         fx += m * R * rate * rate * co - D / R * s * y[n + 4 + i]
         fy += m * R * rate * rate * s + D / R * co * y[n + 4 + i]
-    a11 = mt - m * ss
-    a22 = mt - m * cc
-    a12 = m * sc
-    det = a11 * a22 - a12 * a12
-    xdd = (a22 * fx - a12 * fy) / det
-    ydd = (a11 * fy - a12 * fx) / det
+    xdd, ydd = _solve_rotor(mt - m * ss, m * sc, mt - m * cc, fx, fy)
     for i in range(n):
         s, co = dy[2 + i], dy[n + 4 + i]
         dy[n + 4 + i] = -phidd - D / (m * R * R) * y[n + 4 + i] + (xdd * s - ydd * co) / R
@@ -146,12 +148,7 @@ def rhs_rotating(t, y, p, dy):
         sc += s * co
         bu += mu * (rate * rate * co - beta * y[n + 4 + i] * s)
         bv += mu * (rate * rate * s + beta * y[n + 4 + i] * co)
-    a11 = 1.0 - mu * ss
-    a22 = 1.0 - mu * cc
-    a12 = mu * sc
-    det = a11 * a22 - a12 * a12
-    au = (a22 * bu - a12 * bv) / det
-    av = (a11 * bv - a12 * bu) / det
+    au, av = _solve_rotor(1.0 - mu * ss, mu * sc, 1.0 - mu * cc, bu, bv)
     for i in range(n):
         s, co = dy[2 + i], dy[n + 4 + i]
         dy[n + 4 + i] = -wd - beta * y[n + 4 + i] + au * s - av * co
@@ -264,17 +261,23 @@ def _crossing(t_a, v_a, t_b, v_b, level):
 
 
 @njit(cache=True)
+def _stays_below(acc, i_time, i_flag, first, previous, value, t, threshold):
+    """Time after which ``value`` stays below ``threshold``: the crossing after the last sample
+    at or above it (flag 0 while it is above)."""
+    if value >= threshold:
+        acc[i_flag] = 0.0
+    elif first:
+        acc[i_time], acc[i_flag] = t, 1.0
+    elif previous >= threshold:
+        acc[i_time] = _crossing(acc[_T_PREV], previous, t, value, threshold)
+        acc[i_flag] = 1.0
+
+
+@njit(cache=True)
 def _observe(acc, t, r, force, r_threshold, f_threshold):
     """Feed one sample ``(t, r, F)`` to the balance-time, envelope and force analysers."""
     first = acc[_R_PREV] < 0.0
-    # balance time: after the last sample at or above the threshold
-    if r >= r_threshold:
-        acc[_BAL] = 0.0
-    elif first:
-        acc[_BAL_T], acc[_BAL] = t, 1.0
-    elif acc[_R_PREV] >= r_threshold:
-        acc[_BAL_T] = _crossing(acc[_T_PREV], acc[_R_PREV], t, r, r_threshold)
-        acc[_BAL] = 1.0
+    _stays_below(acc, _BAL_T, _BAL, first, acc[_R_PREV], r, t, r_threshold)
     # envelope: piecewise linear through the local maxima of r
     if acc[_R_PREV2] >= 0.0 and acc[_R_PREV2] < acc[_R_PREV] >= r:
         if acc[_PEAK_R] >= r_threshold > acc[_R_PREV]:
@@ -287,13 +290,7 @@ def _observe(acc, t, r, force, r_threshold, f_threshold):
     # bearing force: maximum, and decay below the force threshold for good
     if force > acc[_F_MAX]:
         acc[_F_MAX], acc[_F_MAX_T] = force, t
-    if force >= f_threshold:
-        acc[_F_DONE] = 0.0
-    elif first:
-        acc[_F_T], acc[_F_DONE] = t, 1.0
-    elif acc[_F_PREV] >= f_threshold:
-        acc[_F_T] = _crossing(acc[_T_PREV], acc[_F_PREV], t, force, f_threshold)
-        acc[_F_DONE] = 1.0
+    _stays_below(acc, _F_T, _F_DONE, first, acc[_F_PREV], force, t, f_threshold)
     acc[_R_PREV2], acc[_R_PREV], acc[_F_PREV], acc[_T_PREV] = acc[_R_PREV], r, force, t
     acc[_R_LAST] = r
 
