@@ -46,3 +46,20 @@ def test_malformed_config_names_key_and_allowed_values(config, schema, mutate, e
 def test_config_hash_is_canonical():
     assert config_hash({"a": 1, "b": [1, 2]}) == config_hash({"b": [1, 2], "a": 1})
     assert config_hash({"a": 1}) != config_hash({"a": 1.5})
+
+
+@pytest.mark.parametrize("mutate, expected", [
+    (lambda c: c["paper_b"]["grids"]["beta"].update(min=2.0),
+     "'paper_b.grids.beta': min 2.0 must be below max 1.0"),
+    (lambda c: c["paper_b"]["ga"].update(mass=[0.02, 0.006]),
+     "'paper_b.ga.mass': interval [0.02, 0.006] must have lower < upper"),
+    (lambda c: c["paper_b"]["kinematics"].append("exact"),
+     "'paper_b.kinematics.2': 'exact' is not allowed; must be a string one of 'printed', "
+     "'consistent'"),
+    (lambda c: c["paper_b"]["table2"].update(ic="IC4"), "'paper_b.table2.ic'"),
+    (lambda c: c["paper_b"]["machine"].update(n=3), "'paper_b.machine.n': 3 is not allowed"),
+])
+def test_paper_b_config_errors(config, schema, mutate, expected):
+    with pytest.raises(ConfigError) as err:
+        validate_config(_broken(config, mutate), schema)
+    assert expected in str(err.value)

@@ -87,28 +87,6 @@ def _describe(error: jsonschema.ValidationError) -> str:
             f"must be {_allowed(error.schema)}")
 
 
-def _check_intervals(config: dict) -> list[str]:
-    """Ordered pairs the schema cannot express: every ``[lo, hi]`` interval and ``*_min/*_max``."""
-    problems = []
-
-    def walk(node, path):
-        if isinstance(node, dict):
-            for key, value in node.items():
-                if key.endswith("_min") and key[:-4] + "_max" in node:
-                    hi = node[key[:-4] + "_max"]
-                    if not value < hi:
-                        problems.append(f"config key '{_key(path + [key])}': {value!r} must be "
-                                        f"smaller than '{key[:-4]}_max' = {hi!r}")
-                walk(value, path + [key])
-        elif (isinstance(node, list) and len(node) == 2 and path and path[-2:-1] == ["bounds"]
-              and all(isinstance(v, (int, float)) for v in node)):
-            if not node[0] < node[1]:
-                problems.append(f"config key '{_key(path)}': interval {node!r} must have lower < upper")
-
-    walk(config, [])
-    return problems
-
-
 def _lookup(config: dict, dotted: str):
     node = config
     for part in dotted.split("."):
@@ -116,17 +94,49 @@ def _lookup(config: dict, dotted: str):
     return node
 
 
-def _check_relations(config: dict, schema: dict, path=()) -> list[str]:
-    """Honour the schema extension ``x-at-most: other.key`` (this value <= that value)."""
+def _resolve(schema: dict, root: dict) -> dict:
+    ref = schema.get("$ref", "")
+    if ref.startswith("#/$defs/"):
+        return {**root["$defs"][ref.split("/")[-1]], **{k: v for k, v in schema.items()
+                                                          if k != "$ref"}}
+    return schema
+
+
+def _ordered_problem(value, key) -> str | None:
+    if isinstance(value, dict) and {"min", "max", "n"} <= set(value):
+        if value["min"] > value["max"] or (value["n"] > 1 and value["min"] == value["max"]):
+            return f"config key '{key}': min {value['min']!r} must be below max {value['max']!r}"
+    elif isinstance(value, list) and any(a >= b for a, b in zip(value, value[1:])):
+        return f"config key '{key}': interval {value!r} must have lower < upper"
+    return None
+
+
+def _check_extensions(config, schema: dict, root: dict, path=()) -> list[str]:
+    """Honour the schema extensions ``x-ordered: true`` (an interval ``[lo, hi]`` or a range
+    ``{min, max, n}`` must increase) and ``x-at-most: other.key`` (this value <= that one), and
+    the naming rule ``*_min < *_max`` for sibling keys."""
     problems = []
-    for key, sub in schema.get("properties", {}).items():
-        here = path + (key,)
-        if "x-at-most" in sub:
-            value, other = _lookup(config, _key(here)), _lookup(config, sub["x-at-most"])
-            if not value <= other:
-                problems.append(f"config key '{_key(here)}': {value!r} must be <= "
-                                f"'{sub['x-at-most']}' = {other!r}")
-        problems += _check_relations(config, sub, here)
+    schema = _resolve(schema, root)
+    if schema.get("x-ordered"):
+        problem = _ordered_problem(config, _key(path))
+        problems += [problem] if problem else []
+    if "x-at-most" in schema:
+        other = _lookup(root["__config__"], schema["x-at-most"])
+        if not config <= other:
+            problems.append(f"config key '{_key(path)}': {config!r} must be <= "
+                            f"'{schema['x-at-most']}' = {other!r}")
+    if isinstance(config, dict):
+        for key, value in config.items():
+            if key.endswith("_min") and key[:-4] + "_max" in config:
+                if not value < config[key[:-4] + "_max"]:
+                    problems.append(f"config key '{_key(path + (key,))}': {value!r} must be "
+                                    f"smaller than '{key[:-4]}_max' = {config[key[:-4] + '_max']!r}")
+            sub = schema.get("properties", {}).get(key)
+            if sub is not None:
+                problems += _check_extensions(value, sub, root, path + (key,))
+    elif isinstance(config, list) and "items" in schema:
+        for i, value in enumerate(config):
+            problems += _check_extensions(value, schema["items"], root, path + (str(i),))
     return problems
 
 
@@ -141,7 +151,7 @@ def validate_config(config: dict, schema: dict) -> dict:
     errors = sorted(validator.iter_errors(filled), key=lambda e: list(map(str, e.absolute_path)))
     messages = [_describe(e) for e in errors]
     if not messages:
-        messages = _check_intervals(filled) + _check_relations(filled, schema)
+        messages = _check_extensions(filled, schema, {**schema, "__config__": filled})
     if messages:
         raise ConfigError("invalid configuration:\n  " + "\n  ".join(messages))
     return filled
