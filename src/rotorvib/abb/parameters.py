@@ -155,3 +155,14 @@ def fixed_state(n: int, *, r0: float, theta0: float, phi0, rates=None) -> np.nda
     if rates is not None:
         y[n + 2:] = rates
     return y
+
+
+def paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2):
+    """Paper A's groups ``(mu, rho, zeta_t, beta_t, Omega_t)`` from paper B's (eq. 25),
+    vectorised: with ``s = sqrt(1 + n m_bar)``, ``mu = m_bar/(1 + n m_bar)``,
+    ``rho = m_bar/eps_bar``, ``zeta_t = zeta/s``, ``beta_t = beta s``, ``Omega_t = omega_bar s``
+    (digest A).  Eigenvalues on the total-mass scale are ``s`` times those on paper B's."""
+    m_bar, eps_bar, zeta, beta, omega_bar = np.broadcast_arrays(
+        *(np.asarray(v, dtype=float) for v in (m_bar, eps_bar, zeta, beta, omega_bar)))
+    s = np.sqrt(1 + n * m_bar)
+    return m_bar / (1 + n * m_bar), m_bar / eps_bar, zeta / s, beta * s, omega_bar * s
