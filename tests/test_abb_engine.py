@@ -178,3 +178,17 @@ def test_batch_equals_single_runs():
                      f_threshold=F_THR)
         assert batch[i, 2] == single.balance_time or (np.isnan(batch[i, 2]) and single.censored)
         assert batch[i, 6] == single.force_max
+
+
+def test_balancer_ga_is_deterministic_for_a_seed():
+    from rotorvib.abb.optimise import balance_time_objective, tune_balancer
+
+    objective = balance_time_objective(1.0, 1e4, 0.1, 0.01, 0.012,
+                                       SpeedProfile(200.0, "runup", 0.5, "printed"),
+                                       np.radians([40.0, 45.0]), r0=1e-3, theta0=0.0, t_end=8.0,
+                                       sample_dt=1e-3, r_threshold=R_THR, censored_penalty=2.0)
+    a, b = (tune_balancer(objective, (0.1, 1.0), (0.006, 0.02), pop_size=6, n_gen=3, seed=4)
+            for _ in range(2))
+    np.testing.assert_array_equal(a.x, b.x)
+    np.testing.assert_array_equal(a.history["best_f"], b.history["best_f"])
+    assert 0.1 <= a.x[0] <= 1.0 and 0.006 <= a.x[1] <= 0.02

@@ -63,7 +63,7 @@ def planned_jobs(run: subprocess.CompletedProcess) -> set[str]:
 
 def _digests(root: Path) -> dict[str, str]:
     return {p.relative_to(root).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted((root / "results/paper_c").rglob("*"))
+            for p in sorted((root / "results").glob("paper_*/**/*"))
             if p.suffix in {".nc", ".csv", ".md", ".png"}}
 
 
@@ -83,15 +83,24 @@ def test_reduced_run_builds_every_paper_c_result(run_dir):
         assert (run_dir / f"results/paper_c/figures/{name}.png").stat().st_size > 10_000
     rows = (run_dir / "results/comparison.csv").read_text().splitlines()
     quantities = {row.split(",")[2] for row in rows[1:]}
-    expected = {p["quantity"] for p in read_paper_values(ROOT / "data/paper_values.csv")
-                if p["paper"] == "C"}
+    expected = {p["quantity"] for p in read_paper_values(ROOT / "data/paper_values.csv")}
     assert quantities == expected
     assert "FAIL" in (run_dir / "results/paper_c/tables/derivation_checks.csv").read_text()
 
 
+def test_table2_peak_forces_match_the_paper(run_dir):
+    """With R = 0.1 m (inferred), IC1 and the printed kinematics, Table 2's maximum bearing
+    forces are reproduced within 1 %."""
+    rows = (run_dir / "results/paper_b/tables/table2.csv").read_text().splitlines()[1:]
+    forces = [float(r.split(",")[3]) for r in rows]
+    paper = {p["quantity"]: p["value"] for p in read_paper_values(ROOT / "data/paper_values.csv")}
+    for i, force in enumerate(forces, start=1):
+        assert force == pytest.approx(paper[f"table2_fmax_{i}"], rel=0.01)
+
+
 def test_datasets_pass_cf_1_11(run_dir):
-    datasets = sorted((run_dir / "results/paper_c/datasets").glob("*.nc"))
-    assert len(datasets) == 4
+    datasets = sorted(run_dir.glob("results/paper_*/datasets/*.nc"))
+    assert len(datasets) == 4 + 9
     for path in datasets:
         passed, report = cf_check(path)
         assert passed, report

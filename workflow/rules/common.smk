@@ -15,6 +15,11 @@ C = config["paper_c"]
 C_DATA = "results/paper_c/datasets"
 C_FIG = "results/paper_c/figures"
 C_TAB = "results/paper_c/tables"
+B = config["paper_b"]
+B_DATA = "results/paper_b/datasets"
+B_FIG = "results/paper_b/figures"
+B_TAB = "results/paper_b/tables"
+B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
 
 # Library modules each kind of job runs; their source hash is a rule parameter, so editing
 # them reruns exactly those jobs.
@@ -33,6 +38,17 @@ CODE = {
     "c_figures": ("rotorvib.plotting", "rotorvib.dva.figures"),
     "c_claims": ("rotorvib.comparison", "rotorvib.dva.claims"),
     "b_derivation": ("rotorvib.derivation", "rotorvib.abb.derivation"),
+    "b_model": (
+        "rotorvib.abb.engine",
+        "rotorvib.abb.parameters",
+        "rotorvib.abb.simulate",
+        "rotorvib.abb.stability",
+        "rotorvib.abb.optimise",
+        "rotorvib.abb.studies",
+        "rotorvib.ga",
+    ),
+    "b_figures": ("rotorvib.plotting", "rotorvib.abb.figures"),
+    "b_claims": ("rotorvib.comparison", "rotorvib.tables", "rotorvib.abb.claims"),
     "comparison": ("rotorvib.comparison",),
     "archive": ("rotorvib.archive",),
 }
@@ -61,8 +77,55 @@ def paper_c_results():
     )
 
 
+# Paper B figures: drawing function (rotorvib.abb.figures), datasets, options, caption.
+B_FIGURES = {
+    "fig2": ("stability_map", {"st": "stability_fig2"}, {}),
+    "fig3": ("stability_map", {"st": "stability_fig3"}, {}),
+    "fig4_5": ("speed_profile", {"tr": "time_responses"}, {}),
+    "fig6": ("unbalanced_response", {"tr": "time_responses"}, {}),
+    "fig7": ("envelope_response", {"tr": "time_responses"}, {}),
+    "fig8": ("balance_against", {"grid": "balance_beta"}, {"eps_index": 0}),
+    "fig9": ("balance_against", {"grid": "balance_beta"}, {"eps_index": 1}),
+    "fig10": ("balance_against", {"grid": "balance_beta"}, {"eps_index": 2}),
+    "fig11": ("responses", {"tr": "time_responses"}, {"prefix": "fig11"}),
+    "fig12": ("balance_against", {"grid": "balance_mass"}, {"eps_index": 0}),
+    "fig13": ("balance_against", {"grid": "balance_mass"}, {"eps_index": 1}),
+    "fig14": ("balance_against", {"grid": "balance_mass"}, {"eps_index": 2}),
+    "fig15": ("responses", {"tr": "time_responses"}, {"prefix": "fig15"}),
+    "fig16": ("bearing_forces", {"tr": "time_responses"}, {}),
+    "ga_convergence": ("ga_convergence", {"ga": "ga"}, {}),
+    "calibration_R": ("calibration", {"forces": "forces"}, {"R": B["machine"]["R"]}),
+    "basin": ("basin", {"basin": "basin"}, {"ics": B["initial_conditions"]}),
+    "kinematics": (
+        "kinematics_shift",
+        {"beta": "balance_beta", "mass": "balance_mass"},
+        {},
+    ),
+}
+B_DATASETS = [
+    "stability_fig2",
+    "stability_fig3",
+    "time_responses",
+    "balance_beta",
+    "balance_mass",
+    "ga",
+    "table1",
+    "forces",
+    "basin",
+]
+
+
 def paper_b_results():
-    return expand("results/paper_b/tables/derivation_checks.{ext}", ext=["csv", "md"])
+    return (
+        expand(f"{B_FIG}/{{fig}}.png", fig=list(B_FIGURES))
+        + expand(f"{B_DATA}/{{name}}.nc", name=B_DATASETS)
+        + expand(
+            f"{B_TAB}/{{table}}.{{ext}}",
+            table=["derivation_checks", "table1", "table2"],
+            ext=["csv", "md"],
+        )
+        + [f"{B_TAB}/kinematics.md", "results/paper_b/reproduced.csv"]
+    )
 
 
 def all_results():

@@ -194,11 +194,13 @@ rule c_fig3:
         runtime=5,
         mem_mb=1000,
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="fig3",
         options={"t_at": C["claims"]["fig3_time"]},
         code=code("c_figures"),
     script:
-        "../scripts/c_figure.py"
+        "../scripts/figure.py"
 
 
 use rule c_fig3 as c_fig4 with:
@@ -215,6 +217,8 @@ use rule c_fig3 as c_fig4 with:
     log:
         "results/logs/c_fig4.log",
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="fig4",
         options={},
         code=code("c_figures"),
@@ -234,6 +238,8 @@ use rule c_fig3 as c_linearisation with:
     log:
         "results/logs/c_linearisation.log",
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="linearisation",
         options={},
         code=code("c_figures"),
@@ -253,6 +259,8 @@ use rule c_fig3 as c_fig5 with:
     log:
         "results/logs/c_fig5.log",
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="fig5",
         options={},
         code=code("c_figures"),
@@ -272,6 +280,8 @@ use rule c_fig3 as c_fig6 with:
     log:
         "results/logs/c_fig6.log",
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="fig6",
         options={"w_low": C["claims"]["fig6_w_low"]},
         code=code("c_figures"),
@@ -291,6 +301,8 @@ use rule c_fig3 as c_fig7 with:
     log:
         "results/logs/c_fig7.log",
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="fig7",
         options={},
         code=code("c_figures"),
@@ -310,6 +322,8 @@ use rule c_fig3 as c_ga_convergence with:
     log:
         "results/logs/c_ga_convergence.log",
     params:
+        paper="C",
+        module="rotorvib.dva.figures",
         figure="ga_convergence",
         options={},
         code=code("c_figures"),

@@ -142,3 +142,10 @@ def check_batch(metrics: np.ndarray) -> None:
         kinds = {engine.STATUS_TEXT[int(s)] for s in metrics[failed, 0]}
         raise IntegrationError(f"{failed.size} of {len(metrics)} balancer runs failed "
                                f"({', '.join(sorted(kinds))}); first: run {failed[0]}")
+
+
+def use_threads(n: int) -> None:
+    """Limit the batch runner to ``n`` threads (a workflow job's declared threads)."""
+    import numba
+
+    numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))

@@ -151,7 +151,17 @@ def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, title, wher
                                        "(NaN: no balanced state)", "units": "1"}),
          "state": ((first, "omega_bar"), state,
                    {"long_name": "balanced state", "units": "1", "flag_values": np.int8([0, 1, 2]),
-                    "flag_meanings": "unstable stable no_balanced_state"})},
+                    "flag_meanings": "unstable stable no_balanced_state"}),
+         "critical_speed": (first, 1 / np.sqrt(1 + n * mb[:, 0]),
+                            {"long_name": "undamped critical speed of disk and balls, "
+                                          "sqrt(M/(M + n m)) (omega_bar)", "units": "1"}),
+         "fixed_eps_bar": ((), float(eps_bar), {"long_name": "eccentricity ratio eps/R",
+                                                "units": "1"}),
+         "fixed_zeta": ((), float(zeta), {"long_name": "support damping ratio", "units": "1"}),
+         **({"fixed_beta": ((), float(beta), {"long_name": "ball damping ratio", "units": "1"})}
+            if first == "m_bar" else
+            {"fixed_m_bar": ((), float(m_bar), {"long_name": "ball/disk mass ratio",
+                                               "units": "1"})})},
         coords={**_axis(first, axis, *names[first]),
                 **_axis("omega_bar", omega_bar, "speed ratio omega/omega_n", "1")},
         attrs=_attrs(f"stability of the balanced state ({where})",

@@ -1,0 +1,14 @@
+"""Rule b_basin: balance time over all initial ball positions (beyond the paper)."""
+
+import sys
+
+from rotorvib.abb.studies import Setup, basin_dataset
+from rotorvib.abb.simulate import use_threads
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+use_threads(snakemake.threads)
+p = snakemake.params
+ds = basin_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=p.basin["cases"],
+                   n=p.basin["n"], eps_bar=p.basin["eps_bar"])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

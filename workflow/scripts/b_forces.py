@@ -1,0 +1,19 @@
+"""Rule b_forces: bearing forces of Table 2's rows against the race radius R (calibration)."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.abb.studies import Setup, force_dataset
+from rotorvib.abb.simulate import use_threads
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+use_threads(snakemake.threads)
+p = snakemake.params
+t2, cal = p.table2, p.calibration["R"]
+R_values = np.union1d(np.linspace(cal["min"], cal["max"], cal["n"]), [p.setup["machine"]["R"]])
+ds = force_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=t2["cases"],
+                   R_values=R_values, speed=t2["speed"], eps_bar=t2["eps_bar"],
+                   phi0_deg=p.ics[t2["ic"]])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

@@ -1,0 +1,16 @@
+"""Rule b_ga: genetic algorithm over (beta, m) for every eps_bar x initial condition."""
+
+import sys
+
+from rotorvib.abb.studies import Setup, ga_dataset
+from rotorvib.abb.simulate import use_threads
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+use_threads(snakemake.threads)
+p = snakemake.params
+ga = p.ga
+ds = ga_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, eps_bars=p.eps_bars,
+                ics=p.ics, beta_bounds=ga["beta"], mass_bounds=ga["mass"], pop_size=ga["pop_size"],
+                n_gen=ga["n_gen"], seed=ga["seed"], censored_penalty=ga["censored_penalty"])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items()), ga["seed"]))

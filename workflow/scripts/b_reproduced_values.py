@@ -1,0 +1,16 @@
+"""Rule b_reproduced_values: every stated value and claim of paper B, measured on the datasets."""
+
+import sys
+
+import xarray as xr
+
+from rotorvib.abb.claims import reproduce
+from rotorvib.comparison import paper_values_of, write_reproduced
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
+        if name != "paper_values"}
+rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band,
+                 paper_values=paper_values_of(snakemake.input.paper_values, "B"))
+write_reproduced(rows, snakemake.output[0])

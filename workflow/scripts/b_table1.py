@@ -1,0 +1,18 @@
+"""Rule b_table1: balance time over ball mass for each operating speed (Table 1)."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.abb.studies import Setup, table1_dataset
+from rotorvib.abb.simulate import use_threads
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+use_threads(snakemake.threads)
+p = snakemake.params
+t1 = p.table1
+masses = np.linspace(t1["mass"]["min"], t1["mass"]["max"], t1["mass"]["n"])
+ds = table1_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, speeds=t1["speeds"],
+                    ics=p.ics, beta=t1["beta"], eps_bar=t1["eps_bar"], masses=masses)
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

@@ -1,0 +1,22 @@
+"""Rule b_tables: Tables 1 and 2 of paper B regenerated, and the kinematics note."""
+
+import sys
+from pathlib import Path
+
+import xarray as xr
+
+from rotorvib.abb.claims import kinematics_note, table1_rows, table2_rows
+from rotorvib.tables import write_table
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()}
+kin = str(data["table1"].kinematics_name.values[0])
+write_table(table1_rows(data["table1"], kin), snakemake.output.table1, snakemake.output.table1_md,
+            title=f"Paper B, Table 1: optimum ball mass against operating speed ({kin} kinematics)")
+write_table(table2_rows(data["forces"], snakemake.params.R, kin), snakemake.output.table2,
+            snakemake.output.table2_md,
+            title=f"Paper B, Table 2: bearing forces at the operating speed ({kin} kinematics, "
+                  f"R = {snakemake.params.R} m)")
+Path(snakemake.output.kinematics).write_text(
+    kinematics_note(data["beta"], data["mass"], data["table1"], data["forces"], data["ga"],
+                    snakemake.params.R), encoding="utf-8")
