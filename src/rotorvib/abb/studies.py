@@ -100,6 +100,16 @@ def _axis(name, values, long_name, units):
                                                            "units": units})}
 
 
+def _case_coords(cases, long_name):
+    """Coordinates of a list of (beta, m) cases: number, beta and mass of each."""
+    return {"case": ("case", np.arange(1, len(cases) + 1, dtype=np.int32),
+                     {"long_name": long_name, "units": "1"}),
+            "case_beta": ("case", np.array([c[0] for c in cases], float),
+                          {"long_name": "ball damping ratio beta of the case", "units": "1"}),
+            "case_mass": ("case", np.array([c[1] for c in cases], float),
+                          {"long_name": "ball mass of the case", "units": "kg"})}
+
+
 KINEMATICS_LONG_NAME = ("disk-angle kinematics: printed (w t, as in eqs 7-9) or consistent "
                         "(int w dt)")
 IC_LONG_NAME = "initial ball angles, eq. (39)"
@@ -219,12 +229,7 @@ def force_dataset(setup: Setup, *, kinematics, cases, R_values, speed, eps_bar, 
 
     axes = {"kinematics": kinematics, "case": list(range(len(cases))), "R": R_values}
     coords = {**_label("kinematics", kinematics, KINEMATICS_LONG_NAME),
-              "case": ("case", np.arange(1, len(cases) + 1, dtype=np.int32),
-                       {"long_name": "row of Table 2", "units": "1"}),
-              "case_beta": ("case", np.array([c[0] for c in cases], float),
-                            {"long_name": "ball damping ratio beta of the row", "units": "1"}),
-              "case_mass": ("case", np.array([c[1] for c in cases], float),
-                            {"long_name": "ball mass of the row", "units": "kg"}),
+              **_case_coords(cases, "row of Table 2"),
               **_axis("R", R_values, "race radius R", "m")}
     return _grid_dataset(setup, axes, coords, make_inputs,
                          _attrs("bearing forces of Table 2 against the race radius",
@@ -245,12 +250,7 @@ def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar):
     axes = {"kinematics": kinematics, "case": list(range(len(cases))), "phi1": angles,
             "phi2": angles}
     coords = {**_label("kinematics", kinematics, KINEMATICS_LONG_NAME),
-              "case": ("case", np.arange(1, len(cases) + 1, dtype=np.int32),
-                       {"long_name": "(beta, m) case", "units": "1"}),
-              "case_beta": ("case", np.array([c[0] for c in cases], float),
-                            {"long_name": "ball damping ratio beta", "units": "1"}),
-              "case_mass": ("case", np.array([c[1] for c in cases], float),
-                            {"long_name": "ball mass", "units": "kg"}),
+              **_case_coords(cases, "(beta, m) case"),
               **_axis("phi1", angles, "initial angle of ball 1", "degree"),
               **_axis("phi2", angles, "initial angle of ball 2", "degree")}
     return _grid_dataset(setup, axes, coords, make_inputs,
