@@ -1,0 +1,116 @@
+"""Multiple-scales solutions around an equilibrium of an autonomous system ``z' = f(z)``
+(paper A, section 3, in the reading of digest A).
+
+Write ``z = z* + x`` with ``f(z* + x) = J x + 1/2 H(x, x) + O(|x|^3)`` and expand
+``x = eps x1 + eps^2 x2``:
+
+* order eps (one-term solution, eqs 23-33): ``x1 = sum_j A_j phi_j exp(lambda_j tau)`` over the
+  eigenpairs of ``J`` (for the balancer, the eight roots of the 4x4 lambda-matrix); the
+  constants follow linearly from the initial state;
+* order eps^2 (two-term solution, eqs 34-39): ``x2 = sum_jk A_j A_k c_jk exp((lambda_j +
+  lambda_k) tau)`` with ``c_jk = ((lambda_j + lambda_k) I - J)^-1 1/2 H(phi_j, phi_k)``; the
+  constants solve the eight nonlinear equations ``x(0) = sum_j A_j phi_j + sum_jk A_j A_k c_jk``.
+
+The solver is generic in the vector field: it needs only ``J`` and the symmetric quadratic
+tensor ``T`` with ``H(u, v)_i = sum_jk T_ijk u_j v_k``.  A near-resonance
+``lambda_j + lambda_k ~ lambda_l`` makes ``c_jk`` large and is reported.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import root
+
+
+@dataclass(frozen=True)
+class Resonance:
+    """``lambda_j + lambda_k`` within ``distance`` of ``lambda_l`` (relative to |lambda|)."""
+
+    j: int
+    k: int
+    l: int
+    distance: float
+
+
+@dataclass(frozen=True)
+class MultipleScales:
+    """Eigen-decomposition and second-order coefficients of a system at an equilibrium."""
+
+    J: np.ndarray
+    T: np.ndarray
+    eigenvalues: np.ndarray
+    modes: np.ndarray            # columns phi_j
+    second_order: np.ndarray     # c[j, k, :]
+
+    @classmethod
+    def at(cls, J, T) -> "MultipleScales":
+        J, T = np.asarray(J, float), np.asarray(T, float)
+        lam, phi = np.linalg.eig(J)
+        n = len(lam)
+        c = np.empty((n, n, n), dtype=complex)
+        for j in range(n):
+            for k in range(j, n):
+                forcing = 0.5 * np.einsum("ijk,j,k->i", T, phi[:, j], phi[:, k])
+                try:
+                    c[j, k] = c[k, j] = np.linalg.solve((lam[j] + lam[k]) * np.eye(n) - J,
+                                                        forcing)
+                except np.linalg.LinAlgError:       # exact resonance: no bounded x2 term
+                    c[j, k] = c[k, j] = np.nan
+        return cls(J=J, T=T, eigenvalues=lam, modes=phi, second_order=c)
+
+    def resonances(self, tolerance: float = 0.05) -> list[Resonance]:
+        """Triads with ``|lambda_j + lambda_k - lambda_l| < tolerance * max|lambda|``."""
+        lam = self.eigenvalues
+        scale = np.max(np.abs(lam))
+        found = []
+        for j in range(len(lam)):
+            for k in range(j, len(lam)):
+                gaps = np.abs(lam[j] + lam[k] - lam) / scale
+                l = int(np.argmin(gaps))
+                if gaps[l] < tolerance:
+                    found.append(Resonance(j, k, l, float(gaps[l])))
+        return found
+
+    def one_term_constants(self, x0) -> np.ndarray:
+        """``A`` with ``sum_j A_j phi_j = x0`` (eq. 33)."""
+        return np.linalg.solve(self.modes, np.asarray(x0, dtype=complex))
+
+    def two_term_constants(self, x0) -> np.ndarray:
+        """``A`` solving the eight nonlinear initial-condition equations (eq. 39), by Newton's
+        method from the one-term constants; raises if it does not converge."""
+        x0 = np.asarray(x0, float)
+        n = len(x0)
+        if np.isnan(self.second_order).any():
+            triads = ", ".join(f"l{r.j}+l{r.k}=l{r.l}" for r in self.resonances(1e-9))
+            raise ArithmeticError(f"exact internal resonance ({triads}): the two-term "
+                                  "expansion needs secular terms")
+
+        def residual(a_ri):
+            a = a_ri[:n] + 1j * a_ri[n:]
+            r = self.modes @ a + np.einsum("j,k,jki->i", a, a, self.second_order) - x0
+            return np.concatenate((r.real, r.imag))
+
+        start = self.one_term_constants(x0)
+        sol = root(residual, np.concatenate((start.real, start.imag)), method="hybr",
+                   options={"xtol": 1e-13})
+        misfit = np.linalg.norm(residual(sol.x))
+        if not misfit <= 1e-9 * max(np.linalg.norm(x0), 1e-300):
+            raise ArithmeticError(f"two-term initial conditions did not converge (residual "
+                                  f"{misfit:.2e}): {sol.message}")
+        return sol.x[:n] + 1j * sol.x[n:]
+
+    def one_term(self, x0, tau) -> np.ndarray:
+        """``x(tau)`` of the one-term solution, shape ``(len(tau), n)`` (real)."""
+        a = self.one_term_constants(x0)
+        e = np.exp(np.outer(tau, self.eigenvalues))
+        return np.real((e * a) @ self.modes.T)
+
+    def two_term(self, x0, tau) -> np.ndarray:
+        """``x(tau)`` of the two-term solution, shape ``(len(tau), n)`` (real)."""
+        a = self.two_term_constants(x0)
+        e = np.exp(np.outer(tau, self.eigenvalues))
+        first = (e * a) @ self.modes.T
+        second = np.einsum("tj,tk,j,k,jki->ti", e, e, a, a, self.second_order)
+        return np.real(first + second)
