@@ -12,6 +12,7 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
+include: "workflow/rules/paper_a.smk"
 include: "workflow/rules/paper_b.smk"
 include: "workflow/rules/paper_c.smk"
 include: "workflow/rules/comparison.smk"

@@ -100,7 +100,7 @@ def test_table2_peak_forces_match_the_paper(run_dir):
 
 def test_datasets_pass_cf_1_11(run_dir):
     datasets = sorted(run_dir.glob("results/paper_*/datasets/*.nc"))
-    assert len(datasets) == 4 + 9
+    assert len(datasets) == 4 + 4 + 9
     for path in datasets:
         passed, report = cf_check(path)
         assert passed, report

@@ -18,6 +18,7 @@ STYLE = {
     "axes.labelsize": 10,
     "legend.fontsize": 8.5,
     "savefig.bbox": "tight",
+    "figure.constrained_layout.use": True,
 }
 PAPER_STYLE = {"color": "crimson", "linestyle": "--", "linewidth": 1.2}
 

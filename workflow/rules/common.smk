@@ -15,6 +15,9 @@ C = config["paper_c"]
 C_DATA = "results/paper_c/datasets"
 C_FIG = "results/paper_c/figures"
 C_TAB = "results/paper_c/tables"
+A = config["paper_a"]
+A_DATA = "results/paper_a/datasets"
+A_FIG = "results/paper_a/figures"
 B = config["paper_b"]
 B_DATA = "results/paper_b/datasets"
 B_FIG = "results/paper_b/figures"
@@ -48,6 +51,17 @@ CODE = {
         "rotorvib.ga",
     ),
     "b_figures": ("rotorvib.plotting", "rotorvib.abb.figures"),
+    "a_model": (
+        "rotorvib.abb.engine",
+        "rotorvib.abb.parameters",
+        "rotorvib.abb.simulate",
+        "rotorvib.abb.stability",
+        "rotorvib.abb.expansion",
+        "rotorvib.abb.mms_studies",
+        "rotorvib.multiple_scales",
+    ),
+    "a_figures": ("rotorvib.plotting", "rotorvib.abb.mms_figures"),
+    "a_claims": ("rotorvib.comparison", "rotorvib.abb.mms_claims"),
     "b_claims": ("rotorvib.comparison", "rotorvib.tables", "rotorvib.abb.claims"),
     "comparison": ("rotorvib.comparison",),
     "archive": ("rotorvib.archive",),
@@ -128,9 +142,42 @@ def paper_b_results():
     )
 
 
+# Paper A figures: drawing function (rotorvib.abb.mms_figures), datasets, options.
+A_FIGURES = {
+    "fig2": (
+        "fig2",
+        {"resp": "responses"},
+        {"zoom": A["zoom"], "beta": A["case"]["beta"]},
+    ),
+    "fig3": (
+        "fig3",
+        {"resp": "responses"},
+        {"zoom": A["zoom"], "beta": A["case"]["beta"]},
+    ),
+    "fig4": ("fig4", {"resp": "responses"}, {"beta": A["case"]["beta"]}),
+    "fig5": ("fig5", {"resp": "responses"}, {"betas": A["fig5_6"]["betas"]}),
+    "fig6": ("fig6", {"resp": "responses"}, {"betas": A["fig5_6"]["betas"]}),
+    "fig7": ("fig7", {"region": "stability_region"}, {}),
+    "error_study": ("error_study", {"err": "error_study"}, {}),
+    "slow_flow": ("slow_flow", {"flow": "slow_flow"}, {}),
+}
+
+
+def paper_a_results():
+    return (
+        expand(f"{A_FIG}/{{fig}}.png", fig=list(A_FIGURES))
+        + expand(
+            f"{A_DATA}/{{name}}.nc",
+            name=["responses", "stability_region", "error_study", "slow_flow"],
+        )
+        + ["results/paper_a/reproduced.csv"]
+    )
+
+
 def all_results():
     return (
-        paper_c_results()
+        paper_a_results()
+        + paper_c_results()
         + paper_b_results()
         + ["results/comparison.csv", "results/comparison.md"]
     )

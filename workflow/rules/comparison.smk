@@ -4,7 +4,11 @@
 rule comparison:
     input:
         paper_values=PAPER_VALUES,
-        reproduced=["results/paper_b/reproduced.csv", "results/paper_c/reproduced.csv"],
+        reproduced=[
+            "results/paper_a/reproduced.csv",
+            "results/paper_b/reproduced.csv",
+            "results/paper_c/reproduced.csv",
+        ],
     output:
         csv=report(
             "results/comparison.csv",

@@ -131,3 +131,26 @@ def characteristic_polynomial() -> sp.Poly:
     """``det(lambda^2 M + lambda C + K)`` as a polynomial in ``lambda`` (degree 8)."""
     M, C, K = pencil_matrices()
     return sp.Poly(sp.expand((LAMBDA**2 * M + LAMBDA * C + K).det(method="berkowitz")), LAMBDA)
+
+
+@lru_cache(maxsize=1)
+def _coefficient_function():
+    coeffs = characteristic_polynomial().all_coeffs()
+    return sp.lambdify((MU, RHO, ZETA, BETA, OMEGA), coeffs, "numpy")
+
+
+def polynomial_roots(mu, rho, zeta, beta, omega) -> np.ndarray:
+    """The eight roots of ``det(lambda^2 M + lambda C + K) = 0`` (the multiple-scales
+    eigenvalue problem of the 4x4 lambda-matrix, paper A eqs 23-33), through the symbolic
+    characteristic polynomial and stacked companion matrices: a code path separate from
+    :func:`eigenvalues` (Lyapunov's 8x8 Jacobian)."""
+    values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (mu, rho, zeta, beta,
+                                                                        omega)))
+    shape = values[0].shape
+    coeffs = np.stack([np.broadcast_to(np.asarray(c, dtype=float), shape)
+                       for c in _coefficient_function()(*values)], axis=-1)
+    monic = coeffs[..., 1:] / coeffs[..., :1]
+    companion = np.zeros(shape + (8, 8))
+    companion[..., 0, :] = -monic
+    companion[..., np.arange(1, 8), np.arange(7)] = 1.0
+    return np.linalg.eigvals(companion)

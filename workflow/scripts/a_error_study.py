@@ -1,0 +1,11 @@
+"""Rule a_error_study: error of the multiple-scales solutions against the initial distance."""
+
+import sys
+
+from rotorvib.abb.mms_studies import error_study_dataset
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+ds = error_study_dataset(p.case, p.offset, p.study["deltas"], p.study["tau_end"], p.tau_step, p.rk)
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

@@ -1,0 +1,15 @@
+"""Rule a_reproduced_values: paper A's claims measured on the datasets."""
+
+import sys
+
+import xarray as xr
+
+from rotorvib.abb.mms_claims import reproduce
+from rotorvib.comparison import paper_values_of, write_reproduced
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
+        if name != "paper_values"}
+rows = reproduce(**data, case_beta=snakemake.params.case["beta"],
+                 paper_values=paper_values_of(snakemake.input.paper_values, "A"))
+write_reproduced(rows, snakemake.output[0])

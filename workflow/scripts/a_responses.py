@@ -1,0 +1,12 @@
+"""Rule a_responses: paper A's responses by Runge-Kutta and multiple scales (Figs 2-6)."""
+
+import sys
+
+from rotorvib.abb.mms_studies import responses_dataset
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+betas = sorted({p.case["beta"], *p.betas})
+ds = responses_dataset(p.case, p.offset, betas, p.tau_end, p.tau_step, p.rk)
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

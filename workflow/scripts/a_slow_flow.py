@@ -1,0 +1,14 @@
+"""Rule a_slow_flow: the small-mu slow flow's stability boundary against the exact one."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.abb.mms_studies import slow_flow_dataset
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+grid = {k: np.linspace(p.flow[k]["min"], p.flow[k]["max"], p.flow[k]["n"]) for k in ("beta", "omega")}
+ds = slow_flow_dataset(p.case["mu"], p.case["rho"], p.case["zeta"], grid["beta"], grid["omega"])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

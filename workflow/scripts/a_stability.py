@@ -1,0 +1,15 @@
+"""Rule a_stability: paper A's Fig 7, stable region by multiple scales and by Lyapunov."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.abb.mms_studies import stability_region_dataset
+from rotorvib.datasets import Provenance, write_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
+grid = {k: np.linspace(p.fig7[k]["min"], p.fig7[k]["max"], p.fig7[k]["n"]) for k in ("beta", "omega")}
+ds = stability_region_dataset(p.case["mu"], p.case["rho"], p.fig7["zetas"], grid["beta"],
+                              grid["omega"])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
