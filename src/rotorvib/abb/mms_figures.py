@@ -60,32 +60,31 @@ def fig4(resp, paper, beta):
     return fig
 
 
-def fig5(resp, paper, betas):
+def _beta_family(resp, betas, names, ylabels, title):
+    """Runge-Kutta responses of ``names`` (two panels) for several ball damping ratios."""
     fig, axes = figure(2, 1, sharex=True, figsize=(7.0, 6.0))
     tau = resp.tau.values
     rk = _methods(resp).index("runge_kutta")
     for j, beta in enumerate(betas):
         i = int(np.argmin(np.abs(resp.beta.values - beta)))
-        for ax, name in zip(axes, ("u", "v")):
+        for ax, name in zip(axes, names):
             ax.plot(tau, resp[name].values[i, rk], color=f"C{j}", lw=0.9, label=f"beta = {beta:g}")
-    axes[0].set(ylabel="x / R", title="Fig 5: effect of ball damping (Runge-Kutta)")
-    axes[1].set(xlabel="dimensionless time tau", ylabel="y / R")
+    for ax, ylabel in zip(axes, ylabels):
+        ax.set(ylabel=ylabel)
+    axes[0].set(title=title)
+    axes[1].set(xlabel="dimensionless time tau")
     axes[0].legend(fontsize=8)
     return fig
+
+
+def fig5(resp, paper, betas):
+    return _beta_family(resp, betas, ("u", "v"), ("x / R", "y / R"),
+                        "Fig 5: effect of ball damping (Runge-Kutta)")
 
 
 def fig6(resp, paper, betas):
-    fig, axes = figure(2, 1, sharex=True, figsize=(7.0, 6.0))
-    tau = resp.tau.values
-    rk = _methods(resp).index("runge_kutta")
-    for j, beta in enumerate(betas):
-        i = int(np.argmin(np.abs(resp.beta.values - beta)))
-        for ax, name in zip(axes, ("alpha1", "alpha2")):
-            ax.plot(tau, resp[name].values[i, rk], color=f"C{j}", lw=0.9, label=f"beta = {beta:g}")
-    axes[0].set(ylabel="alpha1 (deg)", title="Fig 6: ball angles for three beta (Runge-Kutta)")
-    axes[1].set(xlabel="dimensionless time tau", ylabel="alpha2 (deg)")
-    axes[0].legend(fontsize=8)
-    return fig
+    return _beta_family(resp, betas, ("alpha1", "alpha2"), ("alpha1 (deg)", "alpha2 (deg)"),
+                        "Fig 6: ball angles for three beta (Runge-Kutta)")
 
 
 def fig7(region, paper):
