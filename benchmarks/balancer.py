@@ -8,7 +8,11 @@ hands scipy the compiled right-hand side (so that ratio isolates the integrator)
 the balance-time differences, the time of a 1000-run batch on all cores, and the
 cached-compilation time.
 
-    python benchmarks/balancer.py [--runs 1000]
+    python -m benchmarks.balancer [--runs 1000] [--convergence]
+
+``--convergence`` prints the convergence study behind the engine's default tolerances
+(``rotorvib.abb.simulate.RTOL, ATOL``): balance time, envelope time and peak force of the
+same run for rtol = 1e-6 ... 1e-12 (atol = 1e-3 rtol).
 """
 
 from __future__ import annotations
@@ -66,11 +70,27 @@ def best_of(n, fn):
     return min(times), out
 
 
+def convergence(p, y0):
+    """Balance time, envelope time and peak force against the tolerance."""
+    print(f"{'rtol':>6} {'steps':>8} {'balance time (s)':>17} {'envelope (s)':>13} "
+          f"{'peak force (N)':>15}")
+    for rtol in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12):
+        res = run(engine.FIXED, p, y0, T_END, sample_dt=DT, r_threshold=R_THR,
+                  f_threshold=F_THR, rtol=rtol, atol=rtol * 1e-3)
+        print(f"{rtol:6.0e} {res.n_steps:8d} {res.balance_time:17.8f} {res.envelope_time:13.8f} "
+              f"{res.force_max:15.8f}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=1000)
+    parser.add_argument("--convergence", action="store_true",
+                        help="print the tolerance convergence study instead")
     args = parser.parse_args()
     p, y0 = case()
+    if args.convergence:
+        convergence(p, y0)
+        return
     run(engine.FIXED, p, y0, 0.1, sample_dt=DT, r_threshold=R_THR, f_threshold=F_THR)  # compile
     t_engine, res = best_of(5, lambda: run(engine.FIXED, p, y0, T_END, sample_dt=DT,
                                            r_threshold=R_THR, f_threshold=F_THR))

@@ -16,8 +16,9 @@ from ..integrate import IntegrationError
 from . import engine
 from .parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
 
-#: Default tolerances, chosen from the convergence study in ``benchmarks/convergence.py``
-#: (paper B run-up: balance time within 1e-6 s and peak force within 2e-7 of rtol = 1e-12).
+#: Default tolerances, chosen from the convergence study
+#: ``python -m benchmarks.balancer --convergence`` (paper B run-up: balance time within 1e-6 s
+#: and peak force within 2e-7 of rtol = 1e-12).
 RTOL, ATOL = 1e-8, 1e-11
 MAX_STEPS = 50_000_000
 
