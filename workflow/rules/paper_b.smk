@@ -1,5 +1,4 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer.
-# (So far: the symbolic check of its printed equations; the reproduction follows.)
 
 
 rule b_derivation_checks:

@@ -140,7 +140,7 @@ def _attrs(title, summary, where):
             "references": f"{REFERENCE}; {where}"}
 
 
-def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, title, where) -> xr.Dataset:
+def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where) -> xr.Dataset:
     """Growth rate of the balanced state (largest real part of the eigenvalues, in units of
     paper B's omega_n) over a 2-D grid; ``m_bar`` or ``beta`` is the grid's first axis."""
     first = "m_bar" if np.ndim(m_bar) else "beta"
