@@ -30,6 +30,16 @@ class Reproduced:
     reproduced: float | None
     explanation: str
 
+    @classmethod
+    def of(cls, paper: str, quantity: str, value, explanation: str) -> "Reproduced":
+        """A row with ``value`` as float (None for a qualitative claim)."""
+        return cls(paper, quantity, None if value is None else float(value), explanation)
+
+
+def supported(ok: bool) -> str:
+    """The opening word of a qualitative row's explanation."""
+    return "supported" if ok else "not supported"
+
 
 def verdict(paper_value: float | None, reproduced: float | None) -> tuple[float | None, str]:
     """Return ``(relative error, verdict)``; ``paper_value=None`` marks a qualitative claim."""

@@ -8,27 +8,22 @@ configuration).
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import xarray as xr
 
-from ..comparison import Reproduced
+from ..comparison import Reproduced, supported
 from .studies import pick
 
 PAPER = "B"
-
-
-def _row(quantity, value, explanation) -> Reproduced:
-    return Reproduced(PAPER, quantity, None if value is None else float(value), explanation)
-
-
-def _word(ok: bool) -> str:
-    return "supported" if ok else "not supported"
+_row = partial(Reproduced.of, PAPER)
 
 
 def _trend_word(trends) -> str:
     if not np.all(np.isfinite(trends)):
         return "undetermined (fewer than three balanced runs on a curve)"
-    return _word(all(t > 0 for t in trends))
+    return supported(all(t > 0 for t in trends))
 
 
 def _kin(ds) -> str:
@@ -126,7 +121,7 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band) -> list[Reprod
                   for i, e in enumerate(b.eps_bar.values) for j, ic in enumerate(b.ic_name.values)}
     inside = [v for v in best_betas.values() if band[0] - 1e-9 <= v <= band[1] + 1e-9]
     rows.append(_row("beta_opt_range", None,
-                     f"{_word(len(inside) == len(best_betas))}: the fastest beta per eps_bar and "
+                     f"{supported(len(inside) == len(best_betas))}: the fastest beta per eps_bar and "
                      "IC is " + ", ".join(f"{v:.2f} ({e:g}, {ic})" for (e, ic), v in
                                           best_betas.items()) + f" ({kin} kinematics)"))
     trends = {str(ic): [_trend(b.balance_time.isel(eps_bar=i, ic=j).values, b.beta.values)
@@ -141,7 +136,7 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band) -> list[Reprod
         k = int(np.nanargmin(curve)) if np.isfinite(curve).any() else 0
         dips.append(0 < k < len(curve) - 1)
     rows.append(_row("figs8_10_ic3_dip", None,
-                     f"{_word(all(dips))}: IC3's minimum lies inside the beta range for "
+                     f"{supported(all(dips))}: IC3's minimum lies inside the beta range for "
                      f"{sum(dips)} of {len(dips)} eps_bar values"))
     mass_trends = [_trend(m.balance_time.isel(eps_bar=i, ic=j).values, m.mass.values)
                    for i in range(m.eps_bar.size) for j in range(m.ic.size)]
@@ -165,7 +160,7 @@ def ga_rows(ga: xr.Dataset, kin: str, bounds: dict, band) -> list[Reproduced]:
             t = float(g.balance_time_opt[i, j])
             tag = f"{_eps_id(eps)}_{str(ic)[-1]}"
             rows.append(_row(f"ga_beta_opt_{tag}", None,
-                             f"{_word(band[0] - 1e-9 <= beta <= band[1] + 1e-9)}: GA optimum beta = "
+                             f"{supported(band[0] - 1e-9 <= beta <= band[1] + 1e-9)}: GA optimum beta = "
                              f"{beta:.3f} (m = {1e3 * m:.2f} g, balance time {t:.2f} s)"))
             at_bound = np.isclose(m, bounds["mass"][0], rtol=1e-3)
             rows.append(_row(f"ga_m_opt_{tag}", m,
@@ -209,7 +204,7 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str,
     order = np.argsort([r["force_max_N"] for r in t2])
     fastest = np.argmin([r["force_decay_time_s"] for r in t2])
     rows.append(_row("fig16_optimum_best", None,
-                     f"{_word(order[0] == len(t2) - 1 and fastest == len(t2) - 1)}: peak forces "
+                     f"{supported(order[0] == len(t2) - 1 and fastest == len(t2) - 1)}: peak forces "
                      + ", ".join(f"{r['force_max_N']:.1f} N" for r in t2) + "; decay times "
                      + ", ".join(f"{r['force_decay_time_s']:.2f} s" for r in t2)))
     return rows
@@ -238,7 +233,7 @@ def response_rows(tr: xr.Dataset, kin: str) -> list[Reproduced]:
                    "fitted envelope curve (its fit is not described)")]
     f6 = run("fig6")
     rows.append(_row("fig6_unbalanced", None,
-                     f"{_word(not np.isfinite(float(f6.balance_time)))}: with beta = 0 r(t) ends "
+                     f"{supported(not np.isfinite(float(f6.balance_time)))}: with beta = 0 r(t) ends "
                      f"at {1e3 * float(f6.r[-1]):.3f} mm, never settling below the threshold"))
     for prefix, quantity, label in (("fig11", "fig11_beta01_fastest", "beta"),
                                     ("fig15", "fig15_m6_fastest", "m")):
@@ -246,7 +241,7 @@ def response_rows(tr: xr.Dataset, kin: str) -> list[Reproduced]:
         times = [float(run(n).balance_time) for n in runs]
         best = runs[int(np.nanargmin(times))] if np.isfinite(times).any() else None
         rows.append(_row(quantity, None,
-                         f"{_word(best == runs[0])}: balance times "
+                         f"{supported(best == runs[0])}: balance times "
                          + ", ".join(f"{n.split('_', 1)[1]} {v:.2f} s" for n, v in
                                      zip(runs, times))))
     return rows
@@ -280,7 +275,7 @@ def stability_rows(st2: xr.Dataset, st3: xr.Dataset) -> list[Reproduced]:
     stable_m = st3.m_bar.values[(st3.state.values == 1).any(axis=1)]
     return [
         _row("fig2_above_critical", None,
-             f"{_word(ok2)}: every stable point lies above the critical speed "
+             f"{supported(ok2)}: every stable point lies above the critical speed "
              f"{float(st2.critical_speed[0]):.3f}; the lowest stable speed is {lowest2:.3f}"),
         _row("fig2_beta_band", None,
              _band_verdict(stable2, zero_beta, st2.beta.values) + ": beta = 0 is "
@@ -288,7 +283,7 @@ def stability_rows(st2: xr.Dataset, st3: xr.Dataset) -> list[Reproduced]:
              + (f"beta in [{band.min():.2f}, {band.max():.2f}] on the grid" if band.size else
                 "no beta on the grid")),
         _row("fig3_above_critical", None,
-             f"{_word(ok3)}: every stable point lies above its critical speed (lowest stable "
+             f"{supported(ok3)}: every stable point lies above its critical speed (lowest stable "
              f"speed {lowest3:.3f}); stable masses start at m_bar = "
              f"{stable_m.min() if stable_m.size else np.nan:.4f}, balanced states exist from "
              f"m_bar = {exists.min() if exists.size else np.nan:.4f} (bound 34: eps_bar/2 = "

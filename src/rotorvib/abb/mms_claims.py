@@ -2,20 +2,15 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import xarray as xr
 
-from ..comparison import Reproduced
+from ..comparison import Reproduced, supported
 
 PAPER = "A"
-
-
-def _row(quantity, value, explanation) -> Reproduced:
-    return Reproduced(PAPER, quantity, None if value is None else float(value), explanation)
-
-
-def _word(ok: bool) -> str:
-    return "supported" if ok else "not supported"
+_row = partial(Reproduced.of, PAPER)
 
 
 def reproduce(*, resp: xr.Dataset, region: xr.Dataset, err: xr.Dataset, case_beta: float,
@@ -43,19 +38,19 @@ def reproduce(*, resp: xr.Dataset, region: xr.Dataset, err: xr.Dataset, case_bet
     e1 = np.abs(resp.u.values[i, one] - resp.u.values[i, rk]).max()
     e2 = np.abs(resp.u.values[i, two] - resp.u.values[i, rk]).max()
     rows.append(_row("two_term_close_to_rk", None,
-                     f"{_word(e2 < e1 and e2 < 0.05 * amp)}: max error in x/R {e2:.2e} (two terms)"
+                     f"{supported(e2 < e1 and e2 < 0.05 * amp)}: max error in x/R {e2:.2e} (two terms)"
                      f" and {e1:.2e} (one term) for an amplitude {amp:.2e}"))
     decay = -resp.eigenvalue_real.max("mode").values
     best = int(np.argmax(decay))
     rows.append(_row("beta_effect", None,
-                     f"{_word(0 < best < len(decay) - 1)}: slowest decay rate "
+                     f"{supported(0 < best < len(decay) - 1)}: slowest decay rate "
                      + ", ".join(f"{d:.4f} (beta = {b:g})" for d, b in zip(decay, resp.beta.values))
                      + "; the fastest balance is at an intermediate beta"
                      if 0 < best < len(decay) - 1 else
-                     f"{_word(False)}: slowest decay rate " + ", ".join(
+                     f"{supported(False)}: slowest decay rate " + ", ".join(
                          f"{d:.4f} (beta = {b:g})" for d, b in zip(decay, resp.beta.values))))
     same = bool(np.array_equal(region.growth_mms.values < 0, region.growth_lyapunov.values < 0))
     rows.append(_row("identical_regions", None,
-                     f"{_word(same)}: the stable sets of the two methods "
+                     f"{supported(same)}: the stable sets of the two methods "
                      f"{'coincide' if same else 'differ'} on every grid point"))
     return rows

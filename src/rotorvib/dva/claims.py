@@ -8,22 +8,17 @@ it only measures the datasets.
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import xarray as xr
 
-from ..comparison import Reproduced
+from ..comparison import Reproduced, supported
 from .parameters import DUAL_NAMES, dual_from_vector
 from .time_response import peak_amplitude
 
 PAPER = "C"
-
-
-def _row(quantity, value, explanation) -> Reproduced:
-    return Reproduced(PAPER, quantity, None if value is None else float(value), explanation)
-
-
-def _verdict_word(ok: bool) -> str:
-    return "supported" if ok else "not supported"
+_row = partial(Reproduced.of, PAPER)
 
 
 def _local_maxima(w, D):
@@ -81,7 +76,7 @@ def ga_rows(ga: xr.Dataset, omega_n: float, J: float, paper: dict) -> list[Repro
     outside = [f"{n} = {v:.4g} outside [{a:.4g}, {b:.4g}]"
                for n, v, a, b in zip(DUAL_NAMES, x_t2, lo, hi) if not a <= v <= b]
     rows.append(_row("table2_within_bounds", None,
-                     f"{_verdict_word(not outside)}: "
+                     f"{supported(not outside)}: "
                      + ("; ".join(outside) if outside else "all eight values lie within the bounds")))
     return rows
 
@@ -120,24 +115,24 @@ def frequency_rows(fr: xr.Dataset, mr: xr.Dataset, claims: dict) -> list[Reprodu
              f"local maximum of D for Table 2 with zero damping (peak D = {peaks_D[peaks_w > 1][0]:.3g});"
              " the printed value is read off Fig 5 to one decimal"),
         _row("fig5_undamped_zero", None,
-             f"{_verdict_word(abs(zero_at - 1) <= 0.01)} to within 1 % of resonance: the "
+             f"{supported(abs(zero_at - 1) <= 0.01)} to within 1 % of resonance: the "
              f"undamped amplitude vanishes at w = {zero_at:.4f}, the frequency sqrt(2k/m) of "
              f"Table 2's equally tuned sets, and is D = {D1['D_table2_undamped']:.3g} at w = 1"),
         _row("fig5_damped_best", None,
-             f"{_verdict_word(band_max['D_table2'] < band_max['D_table2_undamped'])} as the lowest "
+             f"{supported(band_max['D_table2'] < band_max['D_table2_undamped'])} as the lowest "
              f"peak over the band: max D = {band_max['D_table2']:.3g} (Table 2) against "
              f"{band_max['D_table2_undamped']:.3g} undamped; at w = 1 the undamped design is "
              f"lower (D = {D1['D_table2_undamped']:.3g} vs {D1['D_table2']:.3g}); the GA optimum "
              f"reaches D(1) = {D1['D_ga']:.3g} but max D = {band_max['D_ga']:.3g}"),
         _row("fig6_085_best", None,
-             f"{_verdict_word(at1[0.85] < min(at1[0.2], at1[0.6]))}: D(w = 1) = "
+             f"{supported(at1[0.85] < min(at1[0.2], at1[0.6]))}: D(w = 1) = "
              + ", ".join(f"{at1[m]:.3g} (mu = {m})" for m in (0.2, 0.6, 0.85, 1.0))
              + ("; mu = 1 is lower still" if at1[1.0] < at1[0.85] else "")),
         _row("fig6_mu1_close", None,
-             f"{_verdict_word(close <= tol)}: D(w = 1) differs by {100 * close:.1f} % between "
+             f"{supported(close <= tol)}: D(w = 1) differs by {100 * close:.1f} % between "
              f"mu = 1 and mu = 0.85 (close means within {100 * tol:.0f} %)"),
         _row("fig6_equal_masses_w09", None,
-             f"{_verdict_word(at_low[1.0] < at_low[0.85])}: D(w = {w_low}) = {at_low[1.0]:.3g} "
+             f"{supported(at_low[1.0] < at_low[0.85])}: D(w = {w_low}) = {at_low[1.0]:.3g} "
              f"(mu = 1) vs {at_low[0.85]:.3g} (mu = 0.85)"),
     ]
 
@@ -167,19 +162,19 @@ def time_rows(tr: xr.Dataset, omega_n: float, claims: dict, paper: dict) -> list
              f"t = {t_at} s (integration: {amp:.3g} rad); the printed 0.03 rad is reached at "
              f"t = {t_paper:.2f} s, so the stated model and Table 1 cannot give it at 2 s"),
         _row("fig3_growing", None,
-             f"{_verdict_word(grows)}: envelope {env['none'][half]:.3g} rad at t = {t[-1] / 2:.2f} s, "
+             f"{supported(grows)}: envelope {env['none'][half]:.3g} rad at t = {t[-1] / 2:.2f} s, "
              f"{env['none'][-1]:.3g} rad at t = {t[-1]:.2f} s (linear growth)"),
         _row("fig4_dual_best", None,
-             f"{_verdict_word(late['dual'] < 0.5 * late['single'])} against the Den Hartog stand-in "
+             f"{supported(late['dual'] < 0.5 * late['single'])} against the Den Hartog stand-in "
              f"for ref. [8]: late amplitude {late['dual']:.3g} rad (Table 2 dual) vs "
              f"{late['single']:.3g} rad (single set of the same mass), {late['none']:.3g} rad "
              "without absorber; ref. [8]'s own absorber is not available"),
         _row("fig4_ref8_overshoot", None,
-             f"{_verdict_word(overshoot['single'] > 1 and overshoot['dual'] <= 1)}: over the first "
+             f"{supported(overshoot['single'] > 1 and overshoot['dual'] <= 1)}: over the first "
              f"{early.stop} periods the peak ratio to the bare rotor reaches "
              f"{overshoot['single']:.3f} (single, Den Hartog) and {overshoot['dual']:.3f} (dual)"),
         _row("fig7_absorber1_larger", None,
-             f"{_verdict_word(s1 > s2)}: late amplitudes {1e3 * s1:.3g} mm (set 1) and "
+             f"{supported(s1 > s2)}: late amplitudes {1e3 * s1:.3g} mm (set 1) and "
              f"{1e3 * s2:.3g} mm (set 2); linear and nonlinear theta differ by at most "
              f"{lin_gap:.2g} rad"),
     ]
