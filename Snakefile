@@ -15,6 +15,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/paper_a.smk"
 include: "workflow/rules/paper_b.smk"
 include: "workflow/rules/paper_c.smk"
+include: "workflow/rules/figures.smk"
 include: "workflow/rules/comparison.smk"
 include: "workflow/rules/archive.smk"
 
@@ -23,3 +24,7 @@ rule all:
     default_target: True
     input:
         all_results(),
+
+
+# Every script rule's `code` parameter: the fingerprint of the library code it runs.
+add_code_fingerprints(workflow.rules)

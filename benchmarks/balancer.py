@@ -1,7 +1,7 @@
 """Benchmark of the ball-balancer engine against scipy's solve_ivp (issue 3).
 
-Paper B's run-up case (eq. 37 to 200 rad/s, printed kinematics, two balls, IC1, beta = 1,
-m_bar = 0.01, eps_bar = 0.012, zeta = 0.01, R = 0.1 m), 20 s.  Prints the wall time of one run
+Paper B's Fig 7 run (run-up of eq. 37, printed kinematics, two balls; machine, run and balance
+criterion from ``config/config.yaml``, run from the repository root).  Prints the wall time of one run
 with the engine (default tolerances) and with solve_ivp RK45 and DOP853 at rtol 1e-8 -- the plain
 baseline runs the same right-hand side as ordinary Python (``rhs_fixed.py_func``), a second one
 hands scipy the compiled right-hand side (so that ratio isolates the integrator) -- the ratios,
@@ -11,7 +11,7 @@ cached-compilation time.
     python -m benchmarks.balancer [--runs 1000] [--convergence]
 
 ``--convergence`` prints the convergence study behind the engine's default tolerances
-(``rotorvib.abb.simulate.RTOL, ATOL``): balance time, envelope time and peak force of the
+(``rotorvib.models.balancer.simulate.RTOL, ATOL``): balance time, envelope time and peak force of the
 same run for rtol = 1e-6 ... 1e-12 (atol = 1e-3 rtol).
 """
 
@@ -25,17 +25,24 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorvib.abb import engine
-from rotorvib.abb.parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
-from rotorvib.abb.simulate import run, run_batch
+from rotorvib.io.config import load_yaml, validate_config
+from rotorvib.models.balancer import engine
+from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch
+from rotorvib.papers.b.setup import Setup
 
-T_END, DT, R_THR, F_THR = 20.0, 1e-3, 1e-4, 1.0
+CONFIG = validate_config(load_yaml("config/config.yaml"), load_yaml("config/schema.yaml"))
+B = CONFIG["paper_b"]
+SETUP = Setup.from_config(**{key: B[key] for key in ("machine", "initial_state", "speed",
+                                                     "balance")})
+CRITERION = SETUP.criterion
+T_END, DT, R_THR = CRITERION.t_end, CRITERION.sample_dt, CRITERION.r_threshold
 
 
 def case():
-    b = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012, zeta=0.01, beta=1.0)
-    p = fixed_parameters(b, SpeedProfile(200.0, "runup", 0.5, "printed"))
-    return p, fixed_state(2, r0=1e-3, theta0=0.0, phi0=np.radians([40.0, 45.0]))
+    """Fig 7's run (config paper_b.time_responses.fig7) under the printed kinematics."""
+    fig7 = B["time_responses"]["fig7"]
+    return SETUP.run_inputs(mass=fig7["m_bar"] * SETUP.M, eps_bar=fig7["eps_bar"],
+                            beta=fig7["beta"], phi0_deg=fig7["phi0"], kinematics="printed")
 
 
 def balance_time_of(t, r):
@@ -75,8 +82,7 @@ def convergence(p, y0):
     print(f"{'rtol':>6} {'steps':>8} {'balance time (s)':>17} {'envelope (s)':>13} "
           f"{'peak force (N)':>15}")
     for rtol in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12):
-        res = run(engine.FIXED, p, y0, T_END, sample_dt=DT, r_threshold=R_THR,
-                  f_threshold=F_THR, rtol=rtol, atol=rtol * 1e-3)
+        res = run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3)
         print(f"{rtol:6.0e} {res.n_steps:8d} {res.balance_time:17.8f} {res.envelope_time:13.8f} "
               f"{res.force_max:15.8f}")
 
@@ -91,9 +97,8 @@ def main():
     if args.convergence:
         convergence(p, y0)
         return
-    run(engine.FIXED, p, y0, 0.1, sample_dt=DT, r_threshold=R_THR, f_threshold=F_THR)  # compile
-    t_engine, res = best_of(5, lambda: run(engine.FIXED, p, y0, T_END, sample_dt=DT,
-                                           r_threshold=R_THR, f_threshold=F_THR))
+    run(engine.FIXED, p, y0, BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT))  # compile
+    t_engine, res = best_of(5, lambda: run(engine.FIXED, p, y0, CRITERION))
     print(f"{'engine (DOPRI5, rtol 1e-8, numba)':36s} {t_engine * 1e3:8.1f} ms   balance time "
           f"{res.balance_time:.4f} s   ({res.n_steps} steps)")
     for compiled in (False, True):
@@ -108,20 +113,20 @@ def main():
     params[:, 6] *= rng.uniform(0.1, 1.0, args.runs)              # ball damping D
     y0s = np.repeat(y0[None], args.runs, axis=0)
     y0s[:, 2:4] = rng.uniform(0, 2 * np.pi, (args.runs, 2))        # initial ball angles
-    run_batch(engine.FIXED, params[:2], y0s[:2], 0.1, sample_dt=DT, r_threshold=R_THR,
-              f_threshold=F_THR, progress=False)
+    run_batch(engine.FIXED, params[:2], y0s[:2], BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT),
+              progress=False)
     start = time.perf_counter()
-    metrics = run_batch(engine.FIXED, params, y0s, T_END, sample_dt=DT, r_threshold=R_THR,
-                        f_threshold=F_THR, progress=False)
+    metrics = run_batch(engine.FIXED, params, y0s, CRITERION, progress=False)
     batch = time.perf_counter() - start
     print(f"batch of {args.runs} run-ups (20 s each) on all cores: {batch:.2f} s "
-          f"({np.mean(metrics[:, 3] == 1) * 100:.0f} % balanced, "
-          f"{np.sum(metrics[:, 0] != engine.OK)} failed)")
+          f"({np.mean(metric(metrics, 'balanced') == 1) * 100:.0f} % balanced, "
+          f"{np.sum(metric(metrics, 'status') != engine.OK)} failed)")
     probe = ("import time; t = time.perf_counter(); import numpy as np; "
-             "from rotorvib.abb import engine; "
-             "from rotorvib.abb.simulate import run; "
-             "from benchmarks.balancer import case, DT, R_THR, F_THR; p, y0 = case(); "
-             "run(engine.FIXED, p, y0, 0.01, sample_dt=DT, r_threshold=R_THR, f_threshold=F_THR); "
+             "from rotorvib.models.balancer import engine; "
+             "from rotorvib.models.balancer.simulate import BalanceCriterion, run; "
+             "from benchmarks.balancer import case, CRITERION; p, y0 = case(); "
+             "run(engine.FIXED, p, y0, BalanceCriterion(CRITERION.r_threshold, "
+             "CRITERION.f_threshold, 0.01, CRITERION.sample_dt)); "
              "print(time.perf_counter() - t)")
     load = float(subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                                 check=True).stdout)

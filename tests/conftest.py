@@ -4,8 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.config import load_yaml, validate_config
-from rotorvib.dva.parameters import Rotor, dual_absorber
+from rotorvib.io.config import load_yaml, validate_config
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 
 ROOT = Path(__file__).resolve().parents[1]
 

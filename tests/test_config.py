@@ -2,7 +2,7 @@ import copy
 
 import pytest
 
-from rotorvib.config import ConfigError, config_hash, validate_config
+from rotorvib.io.config import ConfigError, config_hash, validate_config
 
 
 def _broken(config, mutate):
@@ -49,8 +49,8 @@ def test_config_hash_is_canonical():
 
 
 @pytest.mark.parametrize("mutate, expected", [
-    (lambda c: c["paper_b"]["grids"]["beta"].update(min=2.0),
-     "'paper_b.grids.beta': min 2.0 must be below max 1.0"),
+    (lambda c: c["paper_b"]["balance_studies"]["beta"]["range"].update(min=2.0),
+     "'paper_b.balance_studies.beta.range': min 2.0 must be below max 1.0"),
     (lambda c: c["paper_b"]["ga"].update(mass=[0.02, 0.006]),
      "'paper_b.ga.mass': interval [0.02, 0.006] must have lower < upper"),
     (lambda c: c["paper_b"]["kinematics"].append("exact"),

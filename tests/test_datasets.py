@@ -5,7 +5,7 @@ import pytest
 import xarray as xr
 
 from conftest import cf_check
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
 
 
 def _dataset():

@@ -1,9 +1,9 @@
 import numpy as np
 import pytest
 
-from rotorvib.dva.optimise import design_bounds, resonance_objective, tune_dual_absorber
-from rotorvib.dva.parameters import dual_to_vector
-from rotorvib.ga import minimise
+from rotorvib.methods.ga import minimise
+from rotorvib.models.absorber.parameters import dual_to_vector
+from rotorvib.papers.c.optimise import design_bounds, resonance_objective, tune_dual_absorber
 
 
 def _shifted_sphere(x):

@@ -13,3 +13,28 @@ def test_readme_api_example_runs(capsys):
     out = capsys.readouterr().out
     assert "balance time 6.179 s (censored: False)" in out
     assert "can balance: True" in out
+
+
+def _layout_block(text):
+    return re.search(r"## Layout\n\n```\n(.*?)```", text, re.S).group(1)
+
+
+def test_readme_layout_names_every_package_and_module():
+    """The layout section matches the tree: every package directory of src/rotorvib and every
+    module in it is named there."""
+    layout = _layout_block((ROOT / "README.md").read_text())
+    src = ROOT / "src/rotorvib"
+    for package in sorted(p for p in src.rglob("*") if (p / "__init__.py").is_file()):
+        rel = package.relative_to(src).as_posix()
+        if rel != ".":
+            assert f"{rel}/" in layout, rel
+        for module in package.glob("*.py"):
+            if module.stem != "__init__":
+                assert re.search(rf"\b{module.stem}\b", layout), module
+
+
+def test_readme_follows_fig8_through_files_that_exist():
+    text = (ROOT / "README.md").read_text()
+    walk = text.split("**Following one figure**", 1)[1].split("\n\n", 2)[1]
+    files = re.findall(r"^\d\. `([^`]+)`", walk, re.M)
+    assert len(files) <= 6 and all((ROOT / f).is_file() for f in files), files

@@ -6,22 +6,26 @@ the SLURM profile, all through the Snakemake command line as a user would run it
 """
 
 import hashlib
+import json
 import os
 import shutil
 import subprocess
 import sys
 import tarfile
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
 
 from conftest import ROOT, cf_check
-from rotorvib.archive import verify_archive
 from rotorvib.comparison import read_paper_values
+from rotorvib.io.archive import verify_archive
 
 pytestmark = pytest.mark.workflow
 BIN = Path(sys.executable).parent
 REDUCED = ["--configfile", "config/config.yaml", "config/test/config.yaml"]
+RECORDER = ROOT / "tests/oracles/job_recorder"
+RECORDS = "job_records"
 
 
 def _copy_repository(dest: Path) -> Path:
@@ -39,7 +43,10 @@ def _copy_repository(dest: Path) -> Path:
 
 
 def snakemake(cwd: Path, *args, check=True) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PYTHONPATH": str(cwd / "src")}
+    """Run Snakemake in ``cwd`` with its own ``src`` first on the path; every script job
+    records what it loaded into ``cwd/job_records`` (tests/oracles/job_recorder)."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(cwd / "src"), str(RECORDER)]),
+           "ROTORVIB_JOB_RECORDS": str(cwd / RECORDS)}
     run = subprocess.run([str(BIN / "snakemake"), *args], cwd=cwd, capture_output=True,
                          text=True, env=env)
     if check and run.returncode != 0:
@@ -61,10 +68,41 @@ def planned_jobs(run: subprocess.CompletedProcess) -> set[str]:
     return jobs
 
 
+def planned_outputs(cwd: Path, *args) -> set[str]:
+    """Output files that Snakemake plans to (re)create, from ``--summary``."""
+    lines = snakemake(cwd, "--summary", *REDUCED, *args).stdout.splitlines()
+    header = lines[0].split("\t")
+    rows = [dict(zip(header, line.split("\t"))) for line in lines[1:] if "\t" in line]
+    return {row["output_file"] for row in rows if row["plan"] != "no update"}
+
+
+def job_records(cwd: Path) -> list[dict]:
+    """What each job of the run loaded and read and wrote (tests/oracles/job_recorder)."""
+    return [json.loads(p.read_text()) for p in sorted((cwd / RECORDS).glob("*.json"))]
+
+
+def downstream_outputs(records: list[dict], selected) -> set[str]:
+    """Outputs of the ``selected`` jobs and of every job that reads them, transitively."""
+    chosen = [r for r in records if selected(r)]
+    outputs = {f for r in chosen for f in r["output"]}
+    grew = True
+    while grew:
+        more = [r for r in records if r not in chosen and outputs & set(r["input"])]
+        chosen += more
+        outputs |= {f for r in more for f in r["output"]}
+        grew = bool(more)
+    return outputs
+
+
 def _digests(root: Path) -> dict[str, str]:
     return {p.relative_to(root).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
             for p in sorted((root / "results").glob("paper_*/**/*"))
             if p.suffix in {".nc", ".csv", ".md", ".png"}}
+
+
+def _copy_run(run_dir: Path, dest: Path) -> Path:
+    shutil.copytree(run_dir, dest, symlinks=True)
+    return dest
 
 
 @pytest.fixture(scope="module")
@@ -72,10 +110,6 @@ def run_dir(tmp_path_factory):
     work = _copy_repository(tmp_path_factory.mktemp("repo"))
     snakemake(work, "-j2", *REDUCED)
     return work
-
-
-C_DOWNSTREAM_OF_TIME = {"c_time_response", "c_fig3", "c_fig4", "c_fig7", "c_linearisation",
-                        "c_reproduced_values", "comparison", "all"}
 
 
 def test_reduced_run_builds_every_paper_c_result(run_dir):
@@ -100,7 +134,8 @@ def test_table2_peak_forces_match_the_paper(run_dir):
 
 def test_datasets_pass_cf_1_11(run_dir):
     datasets = sorted(run_dir.glob("results/paper_*/datasets/*.nc"))
-    assert len(datasets) == 4 + 4 + 9
+    written = {f for r in job_records(run_dir) for f in r["output"] if f.endswith(".nc")}
+    assert {p.relative_to(run_dir).as_posix() for p in datasets} == written
     for path in datasets:
         passed, report = cf_check(path)
         assert passed, report
@@ -113,26 +148,85 @@ def test_rerun_gives_byte_identical_results(run_dir):
 
 
 def test_config_change_reruns_exactly_the_dependent_jobs(run_dir, tmp_path):
-    assert planned_jobs(snakemake(run_dir, "-n", *REDUCED)) == set()
+    assert planned_outputs(run_dir) == set()
+    records = job_records(run_dir)
     change = tmp_path / "change.yaml"
     change.write_text("paper_c:\n  den_hartog:\n    d: 0.09\n")
-    assert planned_jobs(snakemake(run_dir, "-n", *REDUCED, str(change))) == C_DOWNSTREAM_OF_TIME
-    change.write_text("paper_c:\n  mass_ratio_family:\n    mu: [0.2, 0.6, 0.85, 1.0, 1.2]\n")
-    assert planned_jobs(snakemake(run_dir, "-n", *REDUCED, str(change))) == {
-        "c_mass_ratio", "c_fig6", "c_reproduced_values", "comparison", "all"}
+    expected = downstream_outputs(records, lambda r: r["rule"] == "c_time_response")
+    assert "results/paper_c/figures/fig4.png" in expected
+    assert planned_outputs(run_dir, str(change)) == expected
+    change.write_text("paper_b:\n  balance_studies:\n    eps_bar:\n      fixed: {beta: 0.5, "
+                      "mass: 0.01}\n")
+    assert planned_outputs(run_dir, str(change)) == {
+        "results/paper_b/datasets/balance_eps_bar.nc",
+        "results/paper_b/figures/balance_eps_bar.png"}
 
 
-def test_source_change_reruns_exactly_the_jobs_using_it(run_dir):
-    figures = run_dir / "src/rotorvib/dva/figures.py"
-    original = figures.read_text()
+def _edit_in_turn(work: Path, files: list[str], edit) -> dict[str, set[str]]:
+    """Planned outputs after editing each file alone (restored afterwards)."""
+    planned = {}
+    for name in files:
+        path = work / name
+        original, stat = path.read_bytes(), path.stat()
+        try:
+            edit(path)
+            planned[name] = planned_outputs(work)
+        finally:
+            path.write_bytes(original)
+            os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    return planned
+
+
+def _behaviour_edit(path: Path):
+    if path.suffix == ".py":
+        path.write_text(path.read_text() + "\n_EDITED = True\n")
+    else:  # a data file: new content (Snakemake ignores a newer file with an unchanged checksum)
+        path.write_text(path.read_text() + "\n")
+
+
+def test_every_module_and_data_file_reruns_exactly_the_jobs_that_load_it(run_dir, tmp_path):
+    """Edit each module under src/rotorvib and each file under data/ in turn: the dry run plans
+    exactly the jobs that loaded that module (recorded from sys.modules while they ran) or read
+    that file, and everything downstream of them, neither more nor fewer."""
+    records = [r for r in job_records(run_dir) if r["rule"] != "archive"]
+    modules = sorted(p.relative_to(run_dir).as_posix()
+                     for p in (run_dir / "src/rotorvib").rglob("*.py"))
+    data = sorted(p.relative_to(run_dir).as_posix() for p in (run_dir / "data").iterdir())
+    files = modules + data
+
+    def name_of(path):
+        parts = Path(path).relative_to("src").with_suffix("").parts
+        return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+    def expected(path):
+        if path.startswith("data/"):
+            return downstream_outputs(records, lambda r: path in r["input"])
+        return downstream_outputs(records, lambda r: name_of(path) in r["modules"])
+
+    copies = [run_dir, _copy_run(run_dir, tmp_path / "second")]
+    with ThreadPoolExecutor(len(copies)) as pool:
+        halves = pool.map(lambda k: _edit_in_turn(copies[k], files[k::2], _behaviour_edit),
+                          range(len(copies)))
+    planned = {name: plan for half in halves for name, plan in half.items()}
+    wrong = {name: {"missing": sorted(expected(name) - plan), "extra": sorted(plan - expected(name))}
+             for name, plan in planned.items() if plan != expected(name)}
+    assert not wrong, json.dumps(wrong, indent=1)
+    assert planned["src/rotorvib/__init__.py"] >= {f for r in records for f in r["output"]}
+
+
+def test_comments_and_docstrings_rerun_nothing(run_dir):
+    modules = sorted((run_dir / "src/rotorvib").rglob("*.py"))
+    originals = {p: p.read_bytes() for p in modules}
     try:
-        figures.write_text(original + "\n# an edit\n")
-        assert planned_jobs(snakemake(run_dir, "-n", *REDUCED)) == {
-            "c_fig3", "c_fig4", "c_fig5", "c_fig6", "c_fig7", "c_ga_convergence",
-            "c_linearisation", "all"}
+        for path in modules:
+            text = path.read_text()
+            if text.startswith('"""'):
+                text = '"""Edited: ' + text[3:]
+            path.write_text(text + "\n# a comment\n")
+        assert planned_outputs(run_dir) == set()
     finally:
-        figures.write_text(original)
-    assert planned_jobs(snakemake(run_dir, "-n", *REDUCED)) == set()
+        for path, original in originals.items():
+            path.write_bytes(original)
 
 
 def test_malformed_config_stops_before_any_job(run_dir, tmp_path):

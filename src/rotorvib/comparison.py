@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from .tables import write_table
+from rotorvib.io.tables import write_table
 
 COLUMNS = ("paper", "item", "quantity", "unit", "paper_value", "reproduced", "rel_error",
            "verdict", "explanation")

@@ -8,14 +8,10 @@ rule archive:
     output:
         "results/archive/rotorvib-results.tar.gz",
     log:
-        "results/logs/archive.log",
+        logs("archive"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=1000,
-    params:
-        code=code("archive"),
+        ENV
+    message:
+        "Packing every result into one archive"
     script:
         "../scripts/archive.py"

@@ -5,9 +5,9 @@ rule comparison:
     input:
         paper_values=PAPER_VALUES,
         reproduced=[
-            "results/paper_a/reproduced.csv",
-            "results/paper_b/reproduced.csv",
-            "results/paper_c/reproduced.csv",
+            rules.a_reproduced_values.output[0],
+            rules.b_reproduced_values.output[0],
+            rules.c_reproduced_values.output[0],
         ],
     output:
         csv=report(
@@ -17,14 +17,10 @@ rule comparison:
         ),
         md="results/comparison.md",
     log:
-        "results/logs/comparison.log",
+        logs("comparison"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=500,
-    params:
-        code=code("comparison"),
+        ENV
+    message:
+        "Comparison of every stated value with the reproduction"
     script:
         "../scripts/comparison.py"

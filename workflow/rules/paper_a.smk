@@ -1,19 +1,43 @@
 # Paper A: multiple scales and Lyapunov stability of the two-ball balancer (reconstructed model).
 
+A_CAPTION = (
+    "The paper's equations and caption values were lost in extraction: the model is digest A's "
+    "reconstruction and every parameter is chosen (config/config.yaml, paper_a). Claims: the "
+    "two-term multiple-scales solution is very close to Runge-Kutta; ball damping speeds "
+    "balancing up to an optimum; multiple scales and Lyapunov give identical stable regions. "
+    "See results/comparison.md."
+)
+A_CASE = {"zoom": A["zoom"], "beta": A["case"]["beta"]}
+FIGURES["a"] = {
+    "fig2": figure("fig2", {"resp": "responses"}, A_CAPTION, **A_CASE),
+    "fig3": figure("fig3", {"resp": "responses"}, A_CAPTION, **A_CASE),
+    "fig4": figure("fig4", {"resp": "responses"}, A_CAPTION, beta=A["case"]["beta"]),
+    "fig5": figure(
+        "fig5", {"resp": "responses"}, A_CAPTION, betas=A["fig5_6"]["betas"]
+    ),
+    "fig6": figure(
+        "fig6", {"resp": "responses"}, A_CAPTION, betas=A["fig5_6"]["betas"]
+    ),
+    "fig7": figure("fig7", {"region": "stability_region"}, A_CAPTION),
+    "error_study": figure("error_study", {"err": "error_study"}, A_CAPTION),
+    "slow_flow": figure("slow_flow", {"flow": "slow_flow"}, A_CAPTION),
+}
+
+
+RESULTS["a"] = results_of(
+    "a", ["responses", "stability_region", "error_study", "slow_flow"]
+)
+
 
 rule a_responses:
     output:
-        f"{A_DATA}/responses.nc",
+        dataset("a", "responses"),
     log:
-        "results/logs/a_responses.log",
+        logs("a_responses"),
     benchmark:
-        "results/benchmarks/a_responses.tsv"
+        benchmarks("a_responses")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -21,131 +45,84 @@ rule a_responses:
         tau_end=A["tau_end"],
         tau_step=A["tau_step"],
         rk=A["rk"],
-        code=code("io", "a_model"),
+    message:
+        "Paper A: responses by Runge-Kutta and multiple scales (Figs 2-6)"
     script:
         "../scripts/a_responses.py"
 
 
 rule a_stability:
     output:
-        f"{A_DATA}/stability_region.nc",
+        dataset("a", "stability_region"),
     log:
-        "results/logs/a_stability.log",
+        logs("a_stability"),
     benchmark:
-        "results/benchmarks/a_stability.tsv"
+        benchmarks("a_stability")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
         case=A["case"],
         fig7=A["fig7"],
-        code=code("io", "a_model"),
+    message:
+        "Paper A: stable region by multiple scales and by Lyapunov (Fig 7)"
     script:
         "../scripts/a_stability.py"
 
 
 rule a_error_study:
     output:
-        f"{A_DATA}/error_study.nc",
+        dataset("a", "error_study"),
     log:
-        "results/logs/a_error_study.log",
+        logs("a_error_study"),
     benchmark:
-        "results/benchmarks/a_error_study.tsv"
+        benchmarks("a_error_study")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
         case=A["case"],
         offset=A["initial_offset"],
         study=A["error_study"],
         tau_step=A["tau_step"],
         rk=A["rk"],
-        code=code("io", "a_model"),
+    message:
+        "Paper A: error of the multiple-scales solutions against the initial distance"
     script:
         "../scripts/a_error_study.py"
 
 
 rule a_slow_flow:
     output:
-        f"{A_DATA}/slow_flow.nc",
+        dataset("a", "slow_flow"),
     log:
-        "results/logs/a_slow_flow.log",
+        logs("a_slow_flow"),
     benchmark:
-        "results/benchmarks/a_slow_flow.tsv"
+        benchmarks("a_slow_flow")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
         case=A["case"],
         flow=A["slow_flow"],
-        code=code("io", "a_model"),
+    message:
+        "Paper A: slow-flow stability boundary against the exact one"
     script:
         "../scripts/a_slow_flow.py"
 
 
-rule a_figure:
-    input:
-        unpack(
-            lambda wc: {
-                name: f"{A_DATA}/{dataset}.nc"
-                for name, dataset in A_FIGURES[wc.fig][1].items()
-            }
-        ),
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{A_FIG}/{{fig}}.png",
-            caption="../report/a_figure.rst",
-            category="Paper A",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/a_figure_{fig}.log",
-    wildcard_constraints:
-        fig="|".join(A_FIGURES),
-    conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
-    params:
-        paper="A",
-        module="rotorvib.abb.mms_figures",
-        figure=lambda wc: A_FIGURES[wc.fig][0],
-        options=lambda wc: A_FIGURES[wc.fig][2],
-        code=code("a_figures"),
-    script:
-        "../scripts/figure.py"
-
-
 rule a_reproduced_values:
     input:
-        resp=f"{A_DATA}/responses.nc",
-        region=f"{A_DATA}/stability_region.nc",
-        err=f"{A_DATA}/error_study.nc",
+        resp=rules.a_responses.output[0],
+        region=rules.a_stability.output[0],
+        err=rules.a_error_study.output[0],
         paper_values=PAPER_VALUES,
     output:
         "results/paper_a/reproduced.csv",
     log:
-        "results/logs/a_reproduced_values.log",
+        logs("a_reproduced_values"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
+        ENV
     params:
         case=A["case"],
-        code=code("a_claims"),
+    message:
+        "Paper A: measuring the paper's claims on the datasets"
     script:
         "../scripts/a_reproduced_values.py"

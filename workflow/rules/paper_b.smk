@@ -1,296 +1,313 @@
-# Paper B: damping ratio and ball mass of a two-ball automatic balancer.
+# Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
+from rotorvib.papers.b.setup import study_problem
+
+B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
+B_RUNS = {
+    "setup": B_SETUP,
+    "kinematics": B["kinematics"],
+    "ics": B["initial_conditions"],
+}
+
+for _name, _study in B["balance_studies"].items():
+    if problem := study_problem(_study):
+        raise WorkflowError(f"config key 'paper_b.balance_studies.{_name}': {problem}")
+
+B_CAPTION = (
+    "Solid lines: the paper's printed kinematics (the reproduction); dashed: the consistent "
+    "kinematics. Red: the paper's stated values and claims. See results/comparison.md for "
+    "every stated value beside the reproduced one."
+)
+FIGURES["b"] = {
+    "fig2": figure("stability_map", {"st": "stability_fig2"}, B_CAPTION),
+    "fig3": figure("stability_map", {"st": "stability_fig3"}, B_CAPTION),
+    "fig4_5": figure("speed_profile", {"tr": "time_responses"}, B_CAPTION),
+    "fig6": figure("unbalanced_response", {"tr": "time_responses"}, B_CAPTION),
+    "fig7": figure("envelope_response", {"tr": "time_responses"}, B_CAPTION),
+    **{
+        f"fig{number}": figure(
+            "balance_against",
+            {"study": "balance_beta"},
+            B_CAPTION,
+            select={"eps_bar": index},
+        )
+        for index, number in enumerate((8, 9, 10))
+    },
+    "fig11": figure("responses", {"tr": "time_responses"}, B_CAPTION, prefix="fig11"),
+    **{
+        f"fig{number}": figure(
+            "balance_against",
+            {"study": "balance_mass"},
+            B_CAPTION,
+            select={"eps_bar": index},
+            marks={"m_opt": "optimum m"},
+        )
+        for index, number in enumerate((12, 13, 14))
+    },
+    "fig15": figure("responses", {"tr": "time_responses"}, B_CAPTION, prefix="fig15"),
+    "fig16": figure("bearing_forces", {"tr": "time_responses"}, B_CAPTION),
+    "balance_eps_bar": figure(
+        "balance_against", {"study": "balance_eps_bar"}, B_CAPTION
+    ),
+    "ga_convergence": figure("ga_convergence", {"ga": "ga"}, B_CAPTION),
+    "calibration_R": figure(
+        "calibration", {"forces": "forces"}, B_CAPTION, R=B["machine"]["R"]
+    ),
+    "basin": figure(
+        "basin", {"basin": "basin"}, B_CAPTION, ics=B["initial_conditions"]
+    ),
+    "kinematics": figure(
+        "kinematics_shift",
+        {"beta": "balance_beta", "mass": "balance_mass"},
+        B_CAPTION,
+    ),
+}
+
+
+RESULTS["b"] = results_of(
+    "b",
+    [
+        "stability_fig2",
+        "stability_fig3",
+        "time_responses",
+        "ga",
+        "table1",
+        "forces",
+        "basin",
+    ]
+    + [f"balance_{name}" for name in B["balance_studies"]],
+    ["derivation_checks", "table1", "table2"],
+) + [table("b", "kinematics", "md")]
 
 
 rule b_derivation_checks:
     output:
         csv=report(
-            "results/paper_b/tables/derivation_checks.csv",
+            table("b", "derivation_checks", "csv"),
             caption="../report/b_derivation_checks.rst",
             category="Paper B",
             subcategory="Tables",
         ),
-        md="results/paper_b/tables/derivation_checks.md",
+        md=table("b", "derivation_checks", "md"),
     log:
-        "results/logs/b_derivation_checks.log",
+        logs("b_derivation_checks"),
     benchmark:
-        "results/benchmarks/b_derivation_checks.tsv"
+        benchmarks("b_derivation_checks")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
-        module="rotorvib.abb.derivation",
-        code=code("b_derivation"),
+        module="rotorvib.papers.b.derivation",
+    message:
+        "Paper B: checking the printed equations symbolically"
     script:
         "../scripts/derivation_checks.py"
 
 
 rule b_stability:
     output:
-        f"{B_DATA}/stability_{{fig}}.nc",
+        dataset("b", "stability_{fig}"),
     log:
-        "results/logs/b_stability_{fig}.log",
+        logs("b_stability_{fig}"),
     benchmark:
-        "results/benchmarks/b_stability_{fig}.tsv"
+        benchmarks("b_stability_{fig}")
     wildcard_constraints:
-        fig="fig2|fig3",
+        fig="|".join(B["stability_maps"]),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
-        machine=B["machine"],
+        zeta=B["machine"]["zeta"],
+        n=B["machine"]["n"],
         map=lambda wc: B["stability_maps"][wc.fig],
-        code=code("io", "b_model"),
+    message:
+        "Paper B: stability map of {wildcards.fig}"
     script:
         "../scripts/b_stability.py"
 
 
-rule b_balance_grid:
+rule b_balance_study:
     output:
-        f"{B_DATA}/balance_{{axis}}.nc",
+        dataset("b", "balance_{study}"),
     log:
-        "results/logs/b_balance_{axis}.log",
+        logs("b_balance_{study}"),
     benchmark:
-        "results/benchmarks/b_balance_{axis}.tsv"
+        benchmarks("b_balance_{study}")
     wildcard_constraints:
-        axis="beta|mass",
+        study="|".join(B["balance_studies"]),
     conda:
-        "../envs/rotorvib.yaml"
+        ENV
     threads: 2
     resources:
         runtime=30,
-        mem_mb=2000,
     params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"],
-        ics=B["initial_conditions"],
-        grids=B["grids"],
-        code=code("io", "b_model"),
+        **B_RUNS,
+        study=lambda wc: B["balance_studies"][wc.study],
+    message:
+        "Paper B: balance time against {wildcards.study}"
     script:
-        "../scripts/b_balance_grid.py"
+        "../scripts/b_balance_study.py"
 
 
 rule b_time_responses:
     output:
-        f"{B_DATA}/time_responses.nc",
+        dataset("b", "time_responses"),
     log:
-        "results/logs/b_time_responses.log",
+        logs("b_time_responses"),
     benchmark:
-        "results/benchmarks/b_time_responses.tsv"
+        benchmarks("b_time_responses")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=2000,
+        ENV
     params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"],
-        ics=B["initial_conditions"],
+        **B_RUNS,
         responses=B["time_responses"],
         table2=B["table2"],
-        code=code("io", "b_model"),
+    message:
+        "Paper B: time responses of Figs 4-7, 11, 15 and 16"
     script:
         "../scripts/b_time_responses.py"
 
 
 rule b_ga:
     output:
-        f"{B_DATA}/ga.nc",
+        dataset("b", "ga"),
     log:
-        "results/logs/b_ga.log",
+        logs("b_ga"),
     benchmark:
-        "results/benchmarks/b_ga.tsv"
+        benchmarks("b_ga")
     conda:
-        "../envs/rotorvib.yaml"
+        ENV
     threads: 2
     resources:
         runtime=60,
-        mem_mb=2000,
     params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"],
-        ics=B["initial_conditions"],
-        eps_bars=B["grids"]["eps_bar"],
+        **B_RUNS,
         ga=B["ga"],
-        code=code("io", "b_model"),
+    message:
+        "Paper B: genetic algorithm over ball damping and mass"
     script:
         "../scripts/b_ga.py"
 
 
 rule b_table1_runs:
     output:
-        f"{B_DATA}/table1.nc",
+        dataset("b", "table1"),
     log:
-        "results/logs/b_table1_runs.log",
+        logs("b_table1_runs"),
     benchmark:
-        "results/benchmarks/b_table1_runs.tsv"
+        benchmarks("b_table1_runs")
     conda:
-        "../envs/rotorvib.yaml"
+        ENV
     threads: 2
     resources:
         runtime=30,
-        mem_mb=2000,
     params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"],
-        ics=B["initial_conditions"],
+        **B_RUNS,
         table1=B["table1"],
-        code=code("io", "b_model"),
+    message:
+        "Paper B: balance time over ball mass and operating speed (Table 1)"
     script:
         "../scripts/b_table1.py"
 
 
 rule b_forces:
     output:
-        f"{B_DATA}/forces.nc",
+        dataset("b", "forces"),
     log:
-        "results/logs/b_forces.log",
+        logs("b_forces"),
     benchmark:
-        "results/benchmarks/b_forces.tsv"
+        benchmarks("b_forces")
     conda:
-        "../envs/rotorvib.yaml"
+        ENV
     threads: 2
     resources:
         runtime=30,
-        mem_mb=2000,
     params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"],
-        ics=B["initial_conditions"],
+        **B_RUNS,
         table2=B["table2"],
         calibration=B["calibration"],
-        code=code("io", "b_model"),
+    message:
+        "Paper B: bearing forces of Table 2 against the race radius"
     script:
         "../scripts/b_forces.py"
 
 
 rule b_basin:
     output:
-        f"{B_DATA}/basin.nc",
+        dataset("b", "basin"),
     log:
-        "results/logs/b_basin.log",
+        logs("b_basin"),
     benchmark:
-        "results/benchmarks/b_basin.tsv"
+        benchmarks("b_basin")
     conda:
-        "../envs/rotorvib.yaml"
+        ENV
     threads: 2
     resources:
         runtime=60,
-        mem_mb=2000,
     params:
         setup=B_SETUP,
         kinematics=B["kinematics"],
         basin=B["basin"],
-        code=code("io", "b_model"),
+    message:
+        "Paper B: balance time over all initial ball positions"
     script:
         "../scripts/b_basin.py"
 
 
-rule b_figure:
-    input:
-        unpack(
-            lambda wc: {
-                name: f"{B_DATA}/{dataset}.nc"
-                for name, dataset in B_FIGURES[wc.fig][1].items()
-            }
-        ),
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{B_FIG}/{{fig}}.png",
-            caption="../report/b_figure.rst",
-            category="Paper B",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/b_figure_{fig}.log",
-    wildcard_constraints:
-        fig="|".join(B_FIGURES),
-    conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
-    params:
-        paper="B",
-        module="rotorvib.abb.figures",
-        figure=lambda wc: B_FIGURES[wc.fig][0],
-        options=lambda wc: B_FIGURES[wc.fig][2],
-        code=code("b_figures"),
-    script:
-        "../scripts/figure.py"
-
-
 rule b_tables:
     input:
-        table1=f"{B_DATA}/table1.nc",
-        forces=f"{B_DATA}/forces.nc",
-        beta=f"{B_DATA}/balance_beta.nc",
-        mass=f"{B_DATA}/balance_mass.nc",
-        ga=f"{B_DATA}/ga.nc",
+        table1=rules.b_table1_runs.output[0],
+        forces=rules.b_forces.output[0],
+        beta=dataset("b", "balance_beta"),
+        mass=dataset("b", "balance_mass"),
+        ga=rules.b_ga.output[0],
     output:
         table1=report(
-            f"{B_TAB}/table1.csv",
+            table("b", "table1", "csv"),
             caption="../report/b_table1.rst",
             category="Paper B",
             subcategory="Tables",
         ),
-        table1_md=f"{B_TAB}/table1.md",
+        table1_md=table("b", "table1", "md"),
         table2=report(
-            f"{B_TAB}/table2.csv",
+            table("b", "table2", "csv"),
             caption="../report/b_table2.rst",
             category="Paper B",
             subcategory="Tables",
         ),
-        table2_md=f"{B_TAB}/table2.md",
-        kinematics=f"{B_TAB}/kinematics.md",
+        table2_md=table("b", "table2", "md"),
+        kinematics=table("b", "kinematics", "md"),
     log:
-        "results/logs/b_tables.log",
+        logs("b_tables"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
+        ENV
     params:
         R=B["machine"]["R"],
-        code=code("b_claims"),
+    message:
+        "Paper B: Tables 1 and 2 and the kinematics note"
     script:
         "../scripts/b_tables.py"
 
 
 rule b_reproduced_values:
     input:
-        st2=f"{B_DATA}/stability_fig2.nc",
-        st3=f"{B_DATA}/stability_fig3.nc",
-        tr=f"{B_DATA}/time_responses.nc",
-        beta=f"{B_DATA}/balance_beta.nc",
-        mass=f"{B_DATA}/balance_mass.nc",
-        ga=f"{B_DATA}/ga.nc",
-        table1=f"{B_DATA}/table1.nc",
-        forces=f"{B_DATA}/forces.nc",
+        st2=dataset("b", "stability_fig2"),
+        st3=dataset("b", "stability_fig3"),
+        tr=rules.b_time_responses.output[0],
+        beta=dataset("b", "balance_beta"),
+        mass=dataset("b", "balance_mass"),
+        ga=rules.b_ga.output[0],
+        table1=rules.b_table1_runs.output[0],
+        forces=rules.b_forces.output[0],
         paper_values=PAPER_VALUES,
     output:
         "results/paper_b/reproduced.csv",
     log:
-        "results/logs/b_reproduced_values.log",
+        logs("b_reproduced_values"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
+        ENV
     params:
         R=B["machine"]["R"],
         ga=B["ga"],
         beta_band=B["claims"]["beta_opt_range"],
-        code=code("b_claims"),
+    message:
+        "Paper B: measuring the paper's stated values and claims on the datasets"
     script:
         "../scripts/b_reproduced_values.py"

@@ -1,329 +1,218 @@
 # Paper C: dual dynamic vibration absorber on a torsional rotor.
-# config key -> rule -> script -> library function -> dataset -> figure.
+
+FIGURES["c"] = {
+    "fig3": figure(
+        "fig3",
+        {"tr": "time_response"},
+        "Twist of the rotor without absorber driven at its natural frequency from rest "
+        "(nonlinear equations (8)-(10), which reduce to J theta'' + k_t theta = Gamma), with "
+        "the exact envelope Gamma0 t/(2 J omega_n). The paper's claim: 0.03 rad at t = 2 s, "
+        "growing with time (red star).",
+        t_at=C["claims"]["fig3_time"],
+    ),
+    "fig4": figure(
+        "fig4",
+        {"tr": "time_response"},
+        "Response at resonance without absorber, with a classical single absorber of the same "
+        "total mass tuned by Den Hartog's rules (stand-in for the unavailable ref. [8] "
+        "absorber) and with the Table 2 dual absorber. The paper's claim: the dual absorber is "
+        "far better, and the ref. [8] absorber overshoots the no-absorber amplitude at the "
+        "start.",
+    ),
+    "fig5": figure(
+        "fig5",
+        {"fr": "frequency_response"},
+        "Dimensionless amplitude D = ``|Theta|`` k_t/Gamma0 against w = omega/omega_n without "
+        "absorber, for Table 2 with zero damping and with its damping, for Table 2 with the "
+        "printed (wrong) determinant, and for the optimum our GA finds. The paper's claims: "
+        "the undamped absorber gives zero at resonance and two new peaks near w = 0.9 and 1.1 "
+        "(red lines); the damped optimum is best overall. Red star: the paper's objective "
+        "7.5e-4 rad as D.",
+    ),
+    "fig6": figure(
+        "fig6",
+        {"mr": "mass_ratio"},
+        "Frequency response for mass ratios mu = m2/m1 (k2 = mu k1 keeps set 2 tuned as in "
+        "Table 2; other parameters from Table 2). The paper's claims: mu = 0.85 is best at "
+        "resonance, mu = 1 is close to it, and at w = 0.9 equal masses do better.",
+        w_low=C["claims"]["fig6_w_low"],
+    ),
+    "fig7": figure(
+        "fig7",
+        {"tr": "time_response"},
+        "Displacements of absorber sets 1 and 2 of the Table 2 design at resonance (nonlinear "
+        "equations). The paper's claim: absorber 1 moves more than absorber 2.",
+    ),
+    "ga_convergence": figure(
+        "ga_convergence",
+        {"ga": "ga"},
+        "Convergence of the genetic algorithm (best and mean ``|Theta(omega_n)|`` per "
+        "generation), with Table 2 evaluated by eq. (20) and the paper's reported objective "
+        "7.5e-4 rad.",
+    ),
+    "linearisation": figure(
+        "linearisation",
+        {"tr": "time_response"},
+        "Difference between the nonlinear equations (8)-(10) and the linear set (14) for the "
+        "three cases of Fig 4. The paper linearises without showing the effect; at these "
+        "amplitudes it is negligible for the absorbers and zero for the bare rotor.",
+    ),
+}
+
+
+RESULTS["c"] = results_of(
+    "c",
+    ["ga", "frequency_response", "mass_ratio", "time_response"],
+    ["derivation_checks", "table2"],
+)
 
 
 rule c_derivation_checks:
     output:
         csv=report(
-            f"{C_TAB}/derivation_checks.csv",
+            table("c", "derivation_checks", "csv"),
             caption="../report/c_derivation_checks.rst",
             category="Paper C",
             subcategory="Tables",
         ),
-        md=f"{C_TAB}/derivation_checks.md",
+        md=table("c", "derivation_checks", "md"),
     log:
-        "results/logs/c_derivation_checks.log",
+        logs("c_derivation_checks"),
     benchmark:
-        "results/benchmarks/c_derivation_checks.tsv"
+        benchmarks("c_derivation_checks")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=1000,
+        ENV
     params:
-        module="rotorvib.dva.derivation",
-        code=code("c_derivation"),
+        module="rotorvib.papers.c.derivation",
+    message:
+        "Paper C: checking the printed equations symbolically"
     script:
         "../scripts/derivation_checks.py"
 
 
 rule c_ga:
     output:
-        f"{C_DATA}/ga.nc",
+        dataset("c", "ga"),
     log:
-        "results/logs/c_ga.log",
+        logs("c_ga"),
     benchmark:
-        "results/benchmarks/c_ga.tsv"
+        benchmarks("c_ga")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
+        ENV
     resources:
         runtime=20,
-        mem_mb=2000,
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         bounds=C["bounds"],
         ga=C["ga"],
-        code=code("io", "c_model", "c_ga"),
+    message:
+        "Paper C: genetic-algorithm tuning of the dual absorber"
     script:
         "../scripts/c_ga.py"
 
 
 rule c_frequency_response:
     input:
-        ga=f"{C_DATA}/ga.nc",
+        ga=rules.c_ga.output[0],
     output:
-        f"{C_DATA}/frequency_response.nc",
+        dataset("c", "frequency_response"),
     log:
-        "results/logs/c_frequency_response.log",
+        logs("c_frequency_response"),
     benchmark:
-        "results/benchmarks/c_frequency_response.tsv"
+        benchmarks("c_frequency_response")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=1000,
+        ENV
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         grid=C["frequency_response"],
-        code=code("io", "c_model"),
+    message:
+        "Paper C: frequency responses of Fig 5"
     script:
         "../scripts/c_frequency_response.py"
 
 
 rule c_mass_ratio:
     output:
-        f"{C_DATA}/mass_ratio.nc",
+        dataset("c", "mass_ratio"),
     log:
-        "results/logs/c_mass_ratio.log",
+        logs("c_mass_ratio"),
     benchmark:
-        "results/benchmarks/c_mass_ratio.tsv"
+        benchmarks("c_mass_ratio")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=10,
-        mem_mb=1000,
+        ENV
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         grid=C["frequency_response"],
         family=C["mass_ratio_family"],
-        code=code("io", "c_model"),
+    message:
+        "Paper C: mass-ratio family of Fig 6"
     script:
         "../scripts/c_mass_ratio.py"
 
 
 rule c_time_response:
     output:
-        f"{C_DATA}/time_response.nc",
+        dataset("c", "time_response"),
     log:
-        "results/logs/c_time_response.log",
+        logs("c_time_response"),
     benchmark:
-        "results/benchmarks/c_time_response.tsv"
+        benchmarks("c_time_response")
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
+        ENV
     resources:
         runtime=20,
-        mem_mb=2000,
     params:
         rotor=C["rotor"],
         table2=C["table2"],
         den_hartog=C["den_hartog"],
         time=C["time_response"],
-        code=code("io", "c_model"),
+    message:
+        "Paper C: time responses of Figs 3, 4 and 7"
     script:
         "../scripts/c_time_response.py"
 
 
 rule c_table2:
     input:
-        ga=f"{C_DATA}/ga.nc",
+        ga=rules.c_ga.output[0],
     output:
         csv=report(
-            f"{C_TAB}/table2.csv",
+            table("c", "table2", "csv"),
             caption="../report/c_table2.rst",
             category="Paper C",
             subcategory="Tables",
         ),
-        md=f"{C_TAB}/table2.md",
+        md=table("c", "table2", "md"),
     log:
-        "results/logs/c_table2.log",
+        logs("c_table2"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=500,
-    params:
-        code=code("c_claims"),
+        ENV
+    message:
+        "Paper C: Table 2 beside the genetic-algorithm optimum"
     script:
         "../scripts/c_table2.py"
 
 
 rule c_reproduced_values:
     input:
-        ga=f"{C_DATA}/ga.nc",
-        fr=f"{C_DATA}/frequency_response.nc",
-        mr=f"{C_DATA}/mass_ratio.nc",
-        tr=f"{C_DATA}/time_response.nc",
+        ga=rules.c_ga.output[0],
+        fr=rules.c_frequency_response.output[0],
+        mr=rules.c_mass_ratio.output[0],
+        tr=rules.c_time_response.output[0],
         paper_values=PAPER_VALUES,
     output:
         "results/paper_c/reproduced.csv",
     log:
-        "results/logs/c_reproduced_values.log",
+        logs("c_reproduced_values"),
     conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
+        ENV
     params:
         rotor=C["rotor"],
         claims=C["claims"],
-        code=code("c_claims"),
+    message:
+        "Paper C: measuring the paper's stated values and claims on the datasets"
     script:
         "../scripts/c_reproduced_values.py"
-
-
-# --- figures: one rule each, datasets in, PNG out -----------------------------------------
-
-
-rule c_fig3:
-    input:
-        tr=f"{C_DATA}/time_response.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/fig3.png",
-            caption="../report/c_fig3.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_fig3.log",
-    conda:
-        "../envs/rotorvib.yaml"
-    threads: 1
-    resources:
-        runtime=5,
-        mem_mb=1000,
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="fig3",
-        options={"t_at": C["claims"]["fig3_time"]},
-        code=code("c_figures"),
-    script:
-        "../scripts/figure.py"
-
-
-use rule c_fig3 as c_fig4 with:
-    input:
-        tr=f"{C_DATA}/time_response.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/fig4.png",
-            caption="../report/c_fig4.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_fig4.log",
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="fig4",
-        options={},
-        code=code("c_figures"),
-
-
-use rule c_fig3 as c_linearisation with:
-    input:
-        tr=f"{C_DATA}/time_response.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/linearisation.png",
-            caption="../report/c_linearisation.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_linearisation.log",
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="linearisation",
-        options={},
-        code=code("c_figures"),
-
-
-use rule c_fig3 as c_fig5 with:
-    input:
-        fr=f"{C_DATA}/frequency_response.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/fig5.png",
-            caption="../report/c_fig5.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_fig5.log",
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="fig5",
-        options={},
-        code=code("c_figures"),
-
-
-use rule c_fig3 as c_fig6 with:
-    input:
-        mr=f"{C_DATA}/mass_ratio.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/fig6.png",
-            caption="../report/c_fig6.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_fig6.log",
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="fig6",
-        options={"w_low": C["claims"]["fig6_w_low"]},
-        code=code("c_figures"),
-
-
-use rule c_fig3 as c_fig7 with:
-    input:
-        tr=f"{C_DATA}/time_response.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/fig7.png",
-            caption="../report/c_fig7.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_fig7.log",
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="fig7",
-        options={},
-        code=code("c_figures"),
-
-
-use rule c_fig3 as c_ga_convergence with:
-    input:
-        ga=f"{C_DATA}/ga.nc",
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            f"{C_FIG}/ga_convergence.png",
-            caption="../report/c_ga_convergence.rst",
-            category="Paper C",
-            subcategory="Figures",
-        ),
-    log:
-        "results/logs/c_ga_convergence.log",
-    params:
-        paper="C",
-        module="rotorvib.dva.figures",
-        figure="ga_convergence",
-        options={},
-        code=code("c_figures"),

@@ -2,8 +2,8 @@
 
 import sys
 
-from rotorvib.abb.mms_studies import error_study_dataset
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.papers.a.studies import error_study_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

@@ -4,8 +4,8 @@ import sys
 
 import xarray as xr
 
-from rotorvib.abb.mms_claims import reproduce
 from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.papers.a.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()

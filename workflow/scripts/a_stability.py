@@ -4,8 +4,8 @@ import sys
 
 import numpy as np
 
-from rotorvib.abb.mms_studies import stability_region_dataset
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.papers.a.studies import stability_region_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

@@ -2,7 +2,7 @@
 
 import sys
 
-from rotorvib.archive import make_archive
+from rotorvib.io.archive import make_archive
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 make_archive(list(snakemake.input), snakemake.output[0])

@@ -2,9 +2,10 @@
 
 import sys
 
-from rotorvib.abb.studies import Setup, basin_dataset
-from rotorvib.abb.simulate import use_threads
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.papers.b.setup import Setup
+from rotorvib.papers.b.studies import basin_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)

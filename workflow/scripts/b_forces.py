@@ -4,9 +4,10 @@ import sys
 
 import numpy as np
 
-from rotorvib.abb.studies import Setup, force_dataset
-from rotorvib.abb.simulate import use_threads
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.papers.b.setup import Setup
+from rotorvib.papers.b.studies import force_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)

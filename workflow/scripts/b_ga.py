@@ -2,15 +2,16 @@
 
 import sys
 
-from rotorvib.abb.studies import Setup, ga_dataset
-from rotorvib.abb.simulate import use_threads
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.papers.b.optimise import ga_dataset
+from rotorvib.papers.b.setup import Setup
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)
 p = snakemake.params
 ga = p.ga
-ds = ga_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, eps_bars=p.eps_bars,
+ds = ga_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, eps_bars=ga["eps_bar"],
                 ics=p.ics, beta_bounds=ga["beta"], mass_bounds=ga["mass"], pop_size=ga["pop_size"],
                 n_gen=ga["n_gen"], seed=ga["seed"], censored_penalty=ga["censored_penalty"])
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items()), ga["seed"]))

@@ -4,8 +4,8 @@ import sys
 
 import xarray as xr
 
-from rotorvib.abb.claims import reproduce
 from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.papers.b.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

@@ -1,16 +1,15 @@
-"""Rules b_stability_fig2/3: stability of the balanced state on paper B's grids (Figs 2-3)."""
+"""Rule b_stability: stability of the balanced state on paper B's grids (Figs 2-3)."""
 
 import sys
 
 import numpy as np
 
-from rotorvib.abb.studies import stability_dataset
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.papers.b.stability_maps import stability_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 grid = {key: np.linspace(v["min"], v["max"], v["n"]) if isinstance(v, dict) else v
         for key, v in p.map.items()}
-ds = stability_dataset(zeta=p.machine["zeta"], n=p.machine["n"],
-                       where=f"Fig {snakemake.wildcards.fig[3:]}", **grid)
+ds = stability_dataset(zeta=p.zeta, n=p.n, where=f"Fig {snakemake.wildcards.fig[3:]}", **grid)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

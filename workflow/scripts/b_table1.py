@@ -1,12 +1,13 @@
-"""Rule b_table1: balance time over ball mass for each operating speed (Table 1)."""
+"""Rule b_table1_runs: balance time over ball mass for each operating speed (Table 1)."""
 
 import sys
 
 import numpy as np
 
-from rotorvib.abb.studies import Setup, table1_dataset
-from rotorvib.abb.simulate import use_threads
-from rotorvib.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.papers.b.setup import Setup
+from rotorvib.papers.b.studies import table1_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)

@@ -5,8 +5,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from rotorvib.abb.claims import kinematics_note, table1_rows, table2_rows
-from rotorvib.tables import write_table
+from rotorvib.io.tables import write_table
+from rotorvib.papers.b.claims import kinematics_note, table1_rows, table2_rows
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()}

@@ -5,9 +5,9 @@ import sys
 import numpy as np
 import xarray as xr
 
-from rotorvib.datasets import Provenance, write_dataset
-from rotorvib.dva.parameters import Rotor, dual_absorber
-from rotorvib.dva.studies import frequency_response_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
+from rotorvib.papers.c.studies import frequency_response_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

@@ -2,10 +2,10 @@
 
 import sys
 
-from rotorvib.datasets import Provenance, write_dataset
-from rotorvib.dva.optimise import tune_dual_absorber
-from rotorvib.dva.parameters import Rotor, dual_absorber
-from rotorvib.dva.studies import ga_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
+from rotorvib.papers.c.optimise import tune_dual_absorber
+from rotorvib.papers.c.studies import ga_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

@@ -4,9 +4,9 @@ import sys
 
 import numpy as np
 
-from rotorvib.datasets import Provenance, write_dataset
-from rotorvib.dva.parameters import Rotor, dual_absorber
-from rotorvib.dva.studies import mass_ratio_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
+from rotorvib.papers.c.studies import mass_ratio_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

@@ -5,8 +5,8 @@ import sys
 import xarray as xr
 
 from rotorvib.comparison import paper_values_of, write_reproduced
-from rotorvib.dva.claims import reproduce
-from rotorvib.dva.parameters import Rotor
+from rotorvib.models.absorber.parameters import Rotor
+from rotorvib.papers.c.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

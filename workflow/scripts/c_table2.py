@@ -4,8 +4,8 @@ import sys
 
 import xarray as xr
 
-from rotorvib.dva.claims import table2_side_by_side
-from rotorvib.tables import write_table
+from rotorvib.io.tables import write_table
+from rotorvib.papers.c.claims import table2_side_by_side
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 rows = table2_side_by_side(xr.load_dataset(snakemake.input.ga))

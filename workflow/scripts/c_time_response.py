@@ -2,9 +2,9 @@
 
 import sys
 
-from rotorvib.datasets import Provenance, write_dataset
-from rotorvib.dva.parameters import Rotor, dual_absorber
-from rotorvib.dva.studies import time_response_dataset
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
+from rotorvib.papers.c.studies import time_response_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params

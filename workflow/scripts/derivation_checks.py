@@ -3,7 +3,7 @@
 import importlib
 import sys
 
-from rotorvib.derivation import write_checks
+from rotorvib.methods.symbolic import write_checks
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 rows = importlib.import_module(snakemake.params.module).checks()

@@ -1,4 +1,5 @@
-"""Rules c_fig* and b_fig*: one figure from its datasets (named inputs) and the paper's values."""
+"""Rule figure: one figure of a paper from its datasets (named inputs) and the paper's values;
+the drawing function is ``rotorvib.papers.<paper>.figures.<function>`` (params.module)."""
 
 import importlib
 import sys
@@ -6,11 +7,12 @@ import sys
 import xarray as xr
 
 from rotorvib.comparison import paper_values_of
-from rotorvib.plotting import save
+from rotorvib.io.plotting import save
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
+p = snakemake.params
 datasets = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
             if name != "paper_values"}
-paper = paper_values_of(snakemake.input.paper_values, snakemake.params.paper)
-draw = getattr(importlib.import_module(snakemake.params.module), snakemake.params.figure)
-save(draw(**datasets, paper=paper, **snakemake.params.options), snakemake.output[0])
+paper = paper_values_of(snakemake.input.paper_values, snakemake.wildcards.paper.upper())
+draw = getattr(importlib.import_module(p.module), p.function)
+save(draw(**datasets, paper=paper, **p.options), snakemake.output[0])

@@ -1,1 +1,0 @@
-"""Automatic ball balancer (papers A and B): one engine for both reproductions."""

@@ -1,0 +1,115 @@
+"""Code fingerprints derived from imports: which library source a workflow job runs.
+
+The workflow gives every script rule a ``code`` parameter, the SHA-256 of the *behaviour* of the
+library modules the script can load: the import closure of the script inside the ``rotorvib``
+package (every ``import`` and ``from ... import`` statement, at any depth, followed
+transitively, with the ``__init__`` of every enclosing package).  Each module enters the hash as
+its syntax tree with docstrings removed and without positions, so comments, docstrings and
+formatting do not change it and a comment does not rerun a long study.  Nothing is declared by
+hand: a new import is a new dependency.
+
+Modules a script loads by name at run time (``importlib.import_module(params.module)``) are not
+visible in its source; the rule passes them as extra entry points.
+"""
+
+from __future__ import annotations
+
+import ast
+import hashlib
+from functools import lru_cache
+from pathlib import Path
+
+PACKAGE = "rotorvib"
+
+
+def module_file(name: str, root: Path) -> Path | None:
+    """Source file of module ``name`` under ``root`` (a package's ``__init__.py``), or None."""
+    base = root.joinpath(*name.split("."))
+    for candidate in (base.with_suffix(".py"), base / "__init__.py"):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def _absolute(node: ast.ImportFrom, importer: str | None, is_package: bool) -> str:
+    """Absolute module name of a ``from ... import`` statement (relative ones resolved)."""
+    if not node.level:
+        return node.module or ""
+    if importer is None:
+        raise ImportError("relative import outside a package")
+    parts = importer.split(".")
+    anchor = parts if is_package else parts[:-1]
+    anchor = anchor[:len(anchor) - (node.level - 1)]
+    return ".".join(anchor + ([node.module] if node.module else []))
+
+
+def imported_names(source: str, importer: str | None = None, is_package: bool = False) -> set[str]:
+    """Every name an import statement of ``source`` may load as a module.
+
+    ``from a.b import c`` yields ``a.b`` and ``a.b.c`` (``c`` may be a submodule); names that are
+    not modules are dropped by the caller when no source file exists for them.
+    """
+    names = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            names |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            base = _absolute(node, importer, is_package)
+            names.add(base)
+            names |= {f"{base}.{alias.name}" for alias in node.names}
+    return names
+
+
+def _with_parents(name: str) -> list[str]:
+    parts = name.split(".")
+    return [".".join(parts[:i]) for i in range(1, len(parts) + 1)]
+
+
+def import_closure(*entries: str | Path, root: str | Path = "src") -> tuple[str, ...]:
+    """Sorted names of the ``rotorvib`` modules that ``entries`` (script paths or module names)
+    import, directly or through each other, including enclosing packages."""
+    root = Path(root)
+    pending, seen = [], set()
+    for entry in entries:
+        if str(entry).endswith(".py"):
+            pending += imported_names(Path(entry).read_text(encoding="utf-8"))
+        else:
+            pending.append(str(entry))
+    while pending:
+        for name in _with_parents(pending.pop()):
+            if name in seen or name.split(".")[0] != PACKAGE:
+                continue
+            path = module_file(name, root)
+            if path is None:
+                continue
+            seen.add(name)
+            pending += imported_names(path.read_text(encoding="utf-8"), name,
+                                      path.name == "__init__.py")
+    return tuple(sorted(seen))
+
+
+def _strip_docstrings(tree: ast.AST) -> ast.AST:
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+                and body and isinstance(body[0], ast.Expr)
+                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str)):
+            node.body = body[1:] or [ast.Pass()]
+    return tree
+
+
+def normalised_source(source: str) -> str:
+    """The syntax tree of ``source`` without docstrings and positions, as text: equal for two
+    sources that differ only in comments, docstrings or layout."""
+    return ast.dump(_strip_docstrings(ast.parse(source)), include_attributes=False)
+
+
+@lru_cache(maxsize=None)
+def code_fingerprint(*entries: str, root: str = "src") -> str:
+    """SHA-256 over the normalised source of every module in ``import_closure(*entries)``."""
+    digest = hashlib.sha256()
+    for name in import_closure(*entries, root=root):
+        digest.update(name.encode() + b"\0")
+        text = module_file(name, Path(root)).read_text(encoding="utf-8")
+        digest.update(normalised_source(text).encode() + b"\0")
+    return digest.hexdigest()

@@ -1,0 +1,1 @@
+"""Numerical and symbolic methods: integration, multiple scales, genetic algorithm, symbolic equation checks."""

@@ -1,0 +1,87 @@
+"""Symbolic checking of printed equations (sympy): Lagrange's equations and a PASS/FAIL table.
+
+Every paper's derivation module produces :class:`Check` rows; :func:`write_checks` writes them as
+CSV and Markdown in one format for all papers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import sympy as sp
+
+from rotorvib.io.tables import write_table
+
+
+@dataclass(frozen=True)
+class Check:
+    """One printed equation checked against the derivation."""
+
+    paper: str
+    equation: str
+    description: str
+    passed: bool
+    difference: str = "0"
+
+    @property
+    def status(self) -> str:
+        return "PASS" if self.passed else "FAIL"
+
+
+def lagrange_equations(T, V, coords, t, forces) -> list[sp.Expr]:
+    """``d/dt dL/dq' - dL/dq - Q`` for each generalised coordinate ``q(t)`` with ``L = T - V``."""
+    L = T - V
+    return [sp.expand(sp.diff(sp.diff(L, q.diff(t)), t) - sp.diff(L, q) - Q)
+            for q, Q in zip(coords, forces)]
+
+
+def _reduce(expr, max_ops: int = 300):
+    """Bring a difference to zero if it is one: expansion (with trigonometric sums expanded)
+    settles most; full ``simplify`` is tried only on small leftovers (it is slow on large ones,
+    which are then reported as expanded)."""
+    original = sp.expand(expr)
+    if original == 0:
+        return original
+    expr = sp.expand(sp.expand_trig(original))
+    if expr != 0 and sp.count_ops(expr) <= max_ops:
+        expr = sp.simplify(expr)
+    if expr == 0 or sp.count_ops(expr) < sp.count_ops(original):
+        return expr
+    return original
+
+
+def compare(paper: str, equation: str, description: str, derived, printed, *,
+            proportional_to=None) -> Check:
+    """PASS when ``derived - s * printed`` simplifies to zero.
+
+    With ``proportional_to`` (a term such as ``u''``) the scale ``s`` is the ratio of the two
+    coefficients of that term (a printed equation may be the derived one divided by a constant);
+    otherwise ``s = 1``.  The difference is reported in the printed equation's scale.
+    """
+    derived, printed = sp.expand(derived), sp.expand(printed)
+    scale = sp.Integer(1)
+    if proportional_to is not None:
+        scale = sp.simplify(derived.coeff(proportional_to) / printed.coeff(proportional_to))
+    diff = _reduce(derived / scale - printed)
+    text = "0" if diff == 0 else sp.sstr(sp.factor(diff))
+    if scale != 1 and diff == 0:
+        text = f"0 (printed = derived / {scale})"
+    return Check(paper, equation, description, diff == 0, text)
+
+
+def compare_matrices(paper: str, equation: str, description: str, derived: sp.Matrix,
+                     printed: sp.Matrix) -> Check:
+    diff = (derived - printed).applyfunc(_reduce)
+    bad = [f"[{i},{j}]: {sp.sstr(diff[i, j])}" for i in range(diff.rows)
+           for j in range(diff.cols) if diff[i, j] != 0]
+    return Check(paper, equation, description, not bad, "; ".join(bad) or "0")
+
+
+def write_checks(checks: list[Check], csv_path: str | Path, md_path: str | Path) -> None:
+    """Write the PASS/FAIL table of printed equations as CSV and Markdown."""
+    n_fail = sum(not c.passed for c in checks)
+    rows = [{"paper": c.paper, "equation": c.equation, "check": c.description,
+             "status": c.status, "difference": c.difference} for c in checks]
+    write_table(rows, csv_path, md_path, title="Printed equations checked symbolically",
+                notes=[f"{len(checks)} checks, {len(checks) - n_fail} PASS, {n_fail} FAIL."])

@@ -1,0 +1,1 @@
+"""Physical models: the ball balancer and the torsional vibration absorber (no paper lives here)."""

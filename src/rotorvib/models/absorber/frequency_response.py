@@ -1,0 +1,83 @@
+"""Steady-state torsional response of paper C's rotor with absorber sets (eqs 14-20).
+
+Three routes to the same amplitude, used to check one another:
+
+* :func:`steady_state` solves ``A q = [Gamma0, 0, ...]`` with ``A = -M w^2 + i w C + K``
+  (eqs 16-18) for any number of absorber sets;
+* :func:`theta_eq20` is the paper's closed form ``Theta = a22 a33 Gamma0 / det(A)`` (eq. 20) for the
+  dual absorber, vectorised over design vectors (the genetic algorithm's objective), with either
+  the correct determinant or the printed one (which has the wrong sign on ``a13 a22 a31``);
+* with no absorber both reduce to ``Gamma0 / (k_t - J w^2)``, i.e. ``D = 1/|1 - w^2|``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.models.absorber.parameters import Rotor
+
+
+def matrices(rotor: Rotor, sets) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mass, damping and stiffness matrices of the linearised equations (eq. 14), any set count.
+
+    Row 0 is the disk equation (11); row ``j`` the equation (12)/(13) of set ``j`` as printed
+    (divided by 2, so M is not symmetric).
+    """
+    n = 1 + len(sets)
+    M, C, K = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
+    M[0, 0] = rotor.J + sum(2 * s.m * s.d**2 for s in sets)
+    K[0, 0] = rotor.k_t
+    for j, s in enumerate(sets, start=1):
+        M[0, j] = 2 * s.m * s.d
+        M[j, 0] = s.m * s.d
+        M[j, j] = s.m
+        C[j, j] = 2 * s.c
+        K[j, j] = 2 * s.k
+    return M, C, K
+
+
+def dynamic_stiffness(rotor: Rotor, sets, omega) -> np.ndarray:
+    """``A(w) = -M w^2 + i w C + K`` (eq. 18), shape ``omega.shape + (n, n)``."""
+    M, C, K = matrices(rotor, sets)
+    w = np.asarray(omega, dtype=float)[..., None, None]
+    return -M * w**2 + 1j * w * C + K
+
+
+def steady_state(rotor: Rotor, sets, omega) -> np.ndarray:
+    """Complex amplitudes ``[Theta, S1, S2, ...]`` (rad, m, m) of eq. (17) by a linear solve."""
+    A = dynamic_stiffness(rotor, sets, omega)
+    rhs = np.zeros(A.shape[:-1], dtype=complex)
+    rhs[..., 0] = rotor.Gamma0
+    return np.linalg.solve(A, rhs[..., None])[..., 0]
+
+
+def theta_eq20(rotor: Rotor, x, omega, *, printed_determinant: bool = False) -> np.ndarray:
+    """Complex ``Theta`` of eq. (20) for dual-absorber design vectors ``x[..., 8]`` (DUAL_NAMES).
+
+    ``printed_determinant=True`` uses the determinant as printed,
+    ``a11 a22 a33 + a13 a22 a31 - a12 a21 a33``; the default uses the true cofactor expansion
+    ``a11 a22 a33 - a13 a22 a31 - a12 a21 a33``.
+    """
+    x = np.asarray(x, dtype=float)
+    m1, m2, k1, k2, c1, c2, d1, d2 = np.moveaxis(x, -1, 0)
+    w2 = np.asarray(omega, dtype=float) ** 2
+    w = np.sqrt(w2)
+    a11 = -(rotor.J + 2 * m1 * d1**2 + 2 * m2 * d2**2) * w2 + rotor.k_t
+    a12, a13 = -2 * m1 * d1 * w2, -2 * m2 * d2 * w2
+    a21, a31 = -m1 * d1 * w2, -m2 * d2 * w2
+    a22 = -m1 * w2 + 2j * c1 * w + 2 * k1
+    a33 = -m2 * w2 + 2j * c2 * w + 2 * k2
+    sign = 1.0 if printed_determinant else -1.0
+    det = a11 * a22 * a33 + sign * a13 * a22 * a31 - a12 * a21 * a33
+    return a22 * a33 * rotor.Gamma0 / det
+
+
+def dimensionless_amplitude(rotor: Rotor, theta) -> np.ndarray:
+    """``D = |Theta| k_t / Gamma0`` (paper C, after eq. 20)."""
+    return np.abs(theta) * rotor.k_t / rotor.Gamma0
+
+
+def bare_rotor_amplitude(w) -> np.ndarray:
+    """``D = 1/|1 - w^2|`` of the rotor without absorber (infinite at ``w = 1``)."""
+    with np.errstate(divide="ignore"):
+        return 1.0 / np.abs(1.0 - np.asarray(w, dtype=float) ** 2)

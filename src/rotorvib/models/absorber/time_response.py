@@ -1,0 +1,75 @@
+"""Forced time response of paper C's rotor with absorber sets.
+
+State ``y = [theta, u_1..u_n, theta', u_1'..u_n']`` for ``n`` absorber sets, forcing
+``Gamma(t) = Gamma0 cos(w t)`` (the real part of the paper's ``Gamma0 exp(i w t)``), start from rest.
+
+* :func:`rhs_nonlinear` is eqs (8)-(10) generalised to ``n`` sets,
+  ``(J + sum 2 m_j (u_j^2 + d_j^2)) theta'' + sum 2 m_j d_j u_j'' + sum 4 m_j u_j u_j' theta'
+  + k_t theta = Gamma`` and ``m_j u_j'' + m_j d_j theta'' - m_j u_j theta'^2 + 2 c_j u_j'
+  + 2 k_j u_j = 0``, solved for the accelerations by eliminating ``u_j''`` (the reduced disk
+  inertia ``J + sum 2 m_j u_j^2`` is always positive);
+* :func:`rhs_linear` is the matrix form (14), ``M q'' + C q' + K q = [Gamma, 0, ...]``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.methods.integrate import integrate
+from rotorvib.models.absorber.frequency_response import matrices
+from rotorvib.models.absorber.parameters import Rotor
+
+
+def _set_arrays(sets):
+    return tuple(np.array([getattr(s, name) for s in sets], dtype=float) for name in "mkcd")
+
+
+def rhs_nonlinear(t, y, rotor: Rotor, sets, omega):
+    m, k, c, d = _set_arrays(sets)
+    n = len(m)
+    theta, u = y[0], y[1:n + 1]
+    dtheta, du = y[n + 1], y[n + 2:]
+    gamma = rotor.Gamma0 * np.cos(omega * t)
+    f = m * u * dtheta**2 - 2 * c * du - 2 * k * u          # = m_j (u_j'' + d_j theta'')
+    inertia = rotor.J + np.sum(2 * m * u**2)
+    ddtheta = (gamma - rotor.k_t * theta - np.sum(4 * m * u * du) * dtheta
+               - np.sum(2 * d * f)) / inertia
+    ddu = f / m - d * ddtheta
+    return np.concatenate(([dtheta], du, [ddtheta], ddu))
+
+
+def rhs_linear(t, y, minv, C, K, gamma0, omega):
+    n = len(y) // 2
+    force = np.zeros(n)
+    force[0] = gamma0 * np.cos(omega * t)
+    q, dq = y[:n], y[n:]
+    return np.concatenate((dq, minv @ (force - C @ dq - K @ q)))
+
+
+def simulate(rotor: Rotor, sets, omega: float, t, *, model: str = "nonlinear",
+             rtol: float = 1e-10, atol: float = 1e-13) -> np.ndarray:
+    """Response from rest at times ``t``; returns ``q(t)``, shape ``(len(t), 1 + n_sets)``
+    (``theta`` in rad, then each set's displacement in m).  ``model`` is ``"nonlinear"``
+    (eqs 8-10) or ``"linear"`` (eq. 14)."""
+    n = 1 + len(sets)
+    y0 = np.zeros(2 * n)
+    if model == "nonlinear":
+        y = integrate(rhs_nonlinear, y0, t, rtol=rtol, atol=atol, args=(rotor, sets, omega))
+    elif model == "linear":
+        M, C, K = matrices(rotor, sets)
+        y = integrate(rhs_linear, y0, t, rtol=rtol, atol=atol,
+                      args=(np.linalg.inv(M), C, K, rotor.Gamma0, omega))
+    else:
+        raise ValueError(f"model must be 'nonlinear' or 'linear', not {model!r}")
+    return y[:, :n]
+
+
+def undamped_resonance_envelope(rotor: Rotor, t):
+    """Exact envelope ``Gamma0 t / (2 J w_n)`` of the bare rotor driven at ``w_n`` from rest."""
+    return rotor.Gamma0 * np.asarray(t) / (2 * rotor.J * rotor.omega_n)
+
+
+def peak_amplitude(t, x, t_at: float, window: float) -> float:
+    """Largest ``|x|`` over ``[t_at - window, t_at]``: the amplitude at ``t_at`` read off a plot."""
+    sel = (t >= t_at - window) & (t <= t_at)
+    return float(np.max(np.abs(x[sel])))

@@ -1,0 +1,425 @@
+"""Compiled core of the automatic ball balancer: right-hand sides, speed profiles and an adaptive
+Dormand-Prince 5(4) integrator that measures balance time and bearing force inside its loop.
+
+Everything here is numba-compiled with ``cache=True``; model parameters travel as arrays (never as
+globals, which a cache would freeze).  Two forms of the same physics:
+
+``FIXED`` (paper B, dimensional)
+    state ``[x, y, phi_1..phi_n, x', y', phi_1'..phi_n']``: the geometric centre C in the fixed
+    frame (regular at r = 0, unlike the polar ``r, theta`` of eqs 7-9) and the ball angles on the
+    disk measured from the line C->G.  The disk angle ``Phi(t)`` follows either paper B's printed
+    kinematics (``Phi = w t``, ``Phi' = w + w' t``, ``Phi'' = 2 w'`` as in eqs 7-9) or the
+    consistent kinematics (``Phi = int w dt``, ``Phi' = w``, ``Phi'' = w'``).
+    Parameters ``P_FIXED``: M (disk mass), m (ball mass), R, eps, k, c, D, n, Omega, T_ramp,
+    profile, kinematics.
+
+``ROTATING`` (paper A, dimensionless, frame turning with the disk)
+    state ``[u, v, a_1..a_n, u', v', a_1'..a_n']`` with ``u + i v = (x + i y) e^{-i Phi} / R``,
+    time ``tau = w_n t``, ``w_n = sqrt(k / M_t)``, ``M_t = M + n m``; digest A's equations
+    divided by ``M_t R w_n^2`` and ``m R^2 w_n^2``.  Parameters ``P_ROT``: mu, rho, zeta, beta, n,
+    Omega, T_ramp (in tau), profile.  Consistent kinematics only.
+
+Speed profiles: ``CONSTANT`` (``w = Omega``) and ``RUNUP``, paper B's eq. (37) scaled to any
+operating speed and ramp time T: ``w = Omega (t/T - sin(2 pi t/T) / (2 pi))`` for ``t < T``
+(T = 0.5 s, Omega = 200 rad/s gives ``400 t - (100/pi) sin(4 pi t)``), then ``w = Omega``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+FIXED, ROTATING = 0, 1
+CONSTANT, RUNUP = 0, 1
+PRINTED, CONSISTENT = 0, 1
+
+# parameter-array layouts
+P_FIXED = ("M", "m", "R", "eps", "k", "c", "D", "n", "Omega", "T_ramp", "profile", "kinematics")
+P_ROT = ("mu", "rho", "zeta", "beta", "n", "Omega", "T_ramp", "profile")
+
+# status codes of an integration
+OK, STEP_UNDERFLOW, NON_FINITE, MAX_STEPS = 0, 1, 2, 3
+STATUS_TEXT = {OK: "ok", STEP_UNDERFLOW: "step size underflow", NON_FINITE: "non-finite state",
+               MAX_STEPS: "maximum number of steps reached"}
+
+# metrics returned by `integrate` (one row per run)
+METRICS = ("status", "n_steps", "balance_time", "balanced", "envelope_time", "envelope_balanced",
+           "force_max", "force_max_time", "force_decay_time", "force_decayed", "r_final")
+N_METRICS = len(METRICS)
+#: column of each metric, by name
+COLUMN = {name: i for i, name in enumerate(METRICS)}
+# the same columns as compiled-in constants
+(_M_STATUS, _M_STEPS, _M_BAL_T, _M_BAL, _M_ENV_T, _M_ENV, _M_F_MAX, _M_F_MAX_T, _M_F_T, _M_F_DONE,
+ _M_R_FINAL) = (COLUMN[name] for name in METRICS)
+
+
+@njit(cache=True)
+def speed(t, omega, t_ramp, profile):
+    """Return ``(w, w', w'', int_0^t w)`` of the speed profile at time ``t``."""
+    if profile == CONSTANT or t >= t_ramp:
+        if profile == CONSTANT:
+            return omega, 0.0, 0.0, omega * t
+        return omega, 0.0, 0.0, omega * (0.5 * t_ramp + (t - t_ramp))
+    a = 2.0 * np.pi / t_ramp
+    w = omega * (t / t_ramp - np.sin(a * t) / (2.0 * np.pi))
+    wd = omega / t_ramp * (1.0 - np.cos(a * t))
+    wdd = omega / t_ramp * a * np.sin(a * t)
+    integral = omega * (t * t / (2.0 * t_ramp) + (np.cos(a * t) - 1.0) / (a * 2.0 * np.pi))
+    return w, wd, wdd, integral
+
+
+@njit(cache=True)
+def disk_kinematics(t, p):
+    """Disk angle, rate and acceleration ``(Phi, Phi', Phi'')`` for the FIXED form."""
+    w, wd, wdd, integral = speed(t, p[8], p[9], int(p[10]))
+    if int(p[11]) == PRINTED:
+        return w * t, w + wd * t, 2.0 * wd
+    return integral, w, wd
+
+
+@njit(cache=True)
+def _solve_rotor(a11, a12, a22, b1, b2):
+    """The symmetric positive-definite 2x2 system left after eliminating the ball accelerations."""
+    det = a11 * a22 - a12 * a12
+    return (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+
+
+@njit(cache=True)
+def rhs_fixed(t, y, p, dy):
+    """Paper B's balancer in fixed-frame Cartesian coordinates (see module docstring).
+
+    The ball equations ``m R^2 (phi_i'' + Phi'') + D phi_i' = m R (x'' sin a_i - y'' cos a_i)``,
+    ``a_i = Phi + phi_i``, are used to eliminate ``phi_i''`` from the two rotor equations, which
+    leaves a 2x2 positive-definite system for ``x'', y''``.
+    """
+    M, m, R, eps, k, c, D = p[0], p[1], p[2], p[3], p[4], p[5], p[6]
+    n = int(p[7])
+    phi, phid, phidd = disk_kinematics(t, p)
+    mt = M + n * m
+    ss = 0.0
+    cc = 0.0
+    sc = 0.0
+    fx = -c * y[n + 2] - k * y[0] + M * eps * (phidd * np.sin(phi) + phid * phid * np.cos(phi))
+    fy = -c * y[n + 3] - k * y[1] - M * eps * (phidd * np.cos(phi) - phid * phid * np.sin(phi))
+    for i in range(n):
+        a = phi + y[2 + i]
+        s = np.sin(a)
+        co = np.cos(a)
+        dy[2 + i] = s            # sin and cos parked in dy until the accelerations are known
+        dy[n + 4 + i] = co
+        rate = phid + y[n + 4 + i]
+        ss += s * s
+        cc += co * co
+        sc += s * co
+        fx += m * R * rate * rate * co - D / R * s * y[n + 4 + i]
+        fy += m * R * rate * rate * s + D / R * co * y[n + 4 + i]
+    xdd, ydd = _solve_rotor(mt - m * ss, m * sc, mt - m * cc, fx, fy)
+    for i in range(n):
+        s, co = dy[2 + i], dy[n + 4 + i]
+        dy[n + 4 + i] = -phidd - D / (m * R * R) * y[n + 4 + i] + (xdd * s - ydd * co) / R
+        dy[2 + i] = y[n + 4 + i]
+    dy[0], dy[1] = y[n + 2], y[n + 3]
+    dy[n + 2] = xdd
+    dy[n + 3] = ydd
+
+
+@njit(cache=True)
+def rhs_rotating(t, y, p, dy):
+    """Paper A's dimensionless rotating-frame balancer (digest A, divided as in the module
+    docstring): with ``a_u = u'' - 2 W v' - W^2 u - W' v`` and ``a_v = v'' + 2 W u' - W^2 v + W' u``,
+    ``a_u + 2 zeta (u' - W v) + u = (mu/rho) W^2 + mu sum[(W + a_i')^2 cos a_i + (W' + a_i'') sin a_i]``,
+    ``a_v + 2 zeta (v' + W u) + v = -(mu/rho) W' + mu sum[(W + a_i')^2 sin a_i - (W' + a_i'') cos a_i]``,
+    ``a_i'' + W' + beta a_i' = a_u sin a_i - a_v cos a_i``.
+    """
+    mu, rho, zeta, beta = p[0], p[1], p[2], p[3]
+    n = int(p[4])
+    w, wd, wdd, integral = speed(t, p[5], p[6], int(p[7]))
+    u, v, up, vp = y[0], y[1], y[n + 2], y[n + 3]
+    gu = 2.0 * w * vp + w * w * u + wd * v
+    gv = -2.0 * w * up + w * w * v - wd * u
+    ss = 0.0
+    cc = 0.0
+    sc = 0.0
+    bu = mu / rho * w * w - 2.0 * zeta * (up - w * v) - u
+    bv = -mu / rho * wd - 2.0 * zeta * (vp + w * u) - v
+    for i in range(n):
+        s = np.sin(y[2 + i])
+        co = np.cos(y[2 + i])
+        dy[2 + i] = s            # sin and cos parked in dy until the accelerations are known
+        dy[n + 4 + i] = co
+        rate = w + y[n + 4 + i]
+        ss += s * s
+        cc += co * co
+        sc += s * co
+        bu += mu * (rate * rate * co - beta * y[n + 4 + i] * s)
+        bv += mu * (rate * rate * s + beta * y[n + 4 + i] * co)
+    au, av = _solve_rotor(1.0 - mu * ss, mu * sc, 1.0 - mu * cc, bu, bv)
+    for i in range(n):
+        s, co = dy[2 + i], dy[n + 4 + i]
+        dy[n + 4 + i] = -wd - beta * y[n + 4 + i] + au * s - av * co
+        dy[2 + i] = y[n + 4 + i]
+    dy[0], dy[1] = up, vp
+    dy[n + 2] = au + gu
+    dy[n + 3] = av + gv
+
+
+@njit(cache=True)
+def rhs(form, t, y, p, dy):
+    if form == FIXED:
+        rhs_fixed(t, y, p, dy)
+    else:
+        rhs_rotating(t, y, p, dy)
+
+
+@njit(cache=True)
+def radius_and_force(form, y, p):
+    """Whirl radius ``r`` and bearing force ``F = k r + c r'`` (eq. 40) of a state.
+
+    FIXED: metres and newtons.  ROTATING: ``r/R`` and ``F/(k R) = r/R + 2 zeta (r/R)'``."""
+    n = int(p[7]) if form == FIXED else int(p[4])
+    x, yy, xd, yd = y[0], y[1], y[n + 2], y[n + 3]
+    r = np.sqrt(x * x + yy * yy)
+    rdot = (x * xd + yy * yd) / r if r > 0.0 else 0.0
+    if form == FIXED:
+        return r, p[4] * r + p[5] * rdot
+    return r, r + 2.0 * p[2] * rdot
+
+
+# Dormand-Prince 5(4) tableau (Hairer, Norsett & Wanner, Solving ODEs I, table 5.2)
+C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
+A21 = 1.0 / 5.0
+A31, A32 = 3.0 / 40.0, 9.0 / 40.0
+A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+A61, A62, A63, A64, A65 = (9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0,
+                           -5103.0 / 18656.0)
+B1, B3, B4, B5, B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
+E1, E3, E4, E5, E6, E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
+                          22.0 / 525.0, -1.0 / 40.0)
+
+
+@njit(cache=True)
+def _norm(err, y0, y1, rtol, atol):
+    total = 0.0
+    for j in range(err.size):
+        scale = atol + rtol * max(abs(y0[j]), abs(y1[j]))
+        total += (err[j] / scale) ** 2
+    return np.sqrt(total / err.size)
+
+
+@njit(cache=True)
+def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span):
+    """Hairer's starting step (Solving ODEs I, II.4)."""
+    d0 = 0.0
+    d1 = 0.0
+    for j in range(y0.size):
+        scale = atol + rtol * abs(y0[j])
+        d0 += (y0[j] / scale) ** 2
+        d1 += (f0[j] / scale) ** 2
+    d0 = np.sqrt(d0 / y0.size)
+    d1 = np.sqrt(d1 / y0.size)
+    h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+    h0 = min(h0, t_span)
+    y1 = y0 + h0 * f0
+    f1 = np.empty_like(y0)
+    rhs(form, t0 + h0, y1, p, f1)
+    d2 = 0.0
+    for j in range(y0.size):
+        scale = atol + rtol * abs(y0[j])
+        d2 += ((f1[j] - f0[j]) / scale) ** 2
+    d2 = np.sqrt(d2 / y0.size) / h0
+    if max(d1, d2) <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** 0.2
+    return min(100.0 * h0, h1, t_span)
+
+
+@njit(cache=True)
+def _hermite(theta, h, y0, f0, y1, f1, out):
+    """Cubic Hermite interpolation at ``t0 + theta h`` from values and slopes at both ends."""
+    h00 = (1.0 + 2.0 * theta) * (1.0 - theta) ** 2
+    h10 = theta * (1.0 - theta) ** 2
+    h01 = theta * theta * (3.0 - 2.0 * theta)
+    h11 = theta * theta * (theta - 1.0)
+    for j in range(y0.size):
+        out[j] = h00 * y0[j] + h10 * h * f0[j] + h01 * y1[j] + h11 * h * f1[j]
+
+
+# analyser state carried between samples (indices into one array)
+(_R_PREV, _T_PREV, _R_PREV2, _F_PREV, _BAL_T, _BAL, _PEAK_T, _PEAK_R, _ENV_T, _ENV, _F_MAX,
+ _F_MAX_T, _F_T, _F_DONE, _R_LAST) = range(15)
+
+
+@njit(cache=True)
+def _new_analysers():
+    acc = np.full(15, np.nan)
+    acc[_R_PREV] = acc[_R_PREV2] = acc[_PEAK_R] = -1.0
+    acc[_BAL] = acc[_ENV] = acc[_F_DONE] = 0.0
+    acc[_F_MAX] = -np.inf
+    return acc
+
+
+@njit(cache=True)
+def _crossing(t_a, v_a, t_b, v_b, level):
+    return t_a + (v_a - level) / (v_a - v_b) * (t_b - t_a)
+
+
+@njit(cache=True)
+def _stays_below(acc, i_time, i_flag, first, previous, value, t, threshold):
+    """Time after which ``value`` stays below ``threshold``: the crossing after the last sample
+    at or above it (flag 0 while it is above)."""
+    if value >= threshold:
+        acc[i_flag] = 0.0
+    elif first:
+        acc[i_time], acc[i_flag] = t, 1.0
+    elif previous >= threshold:
+        acc[i_time] = _crossing(acc[_T_PREV], previous, t, value, threshold)
+        acc[i_flag] = 1.0
+
+
+@njit(cache=True)
+def _observe(acc, t, r, force, r_threshold, f_threshold):
+    """Feed one sample ``(t, r, F)`` to the balance-time, envelope and force analysers."""
+    first = acc[_R_PREV] < 0.0
+    _stays_below(acc, _BAL_T, _BAL, first, acc[_R_PREV], r, t, r_threshold)
+    # envelope: piecewise linear through the local maxima of r
+    if acc[_R_PREV2] >= 0.0 and acc[_R_PREV2] < acc[_R_PREV] >= r:
+        if acc[_PEAK_R] >= r_threshold > acc[_R_PREV]:
+            acc[_ENV_T] = _crossing(acc[_PEAK_T], acc[_PEAK_R], acc[_T_PREV], acc[_R_PREV],
+                                    r_threshold)
+            acc[_ENV] = 1.0
+        elif acc[_R_PREV] >= r_threshold:
+            acc[_ENV] = 0.0
+        acc[_PEAK_T], acc[_PEAK_R] = acc[_T_PREV], acc[_R_PREV]
+    # bearing force: maximum, and decay below the force threshold for good
+    if force > acc[_F_MAX]:
+        acc[_F_MAX], acc[_F_MAX_T] = force, t
+    _stays_below(acc, _F_T, _F_DONE, first, acc[_F_PREV], force, t, f_threshold)
+    acc[_R_PREV2], acc[_R_PREV], acc[_F_PREV], acc[_T_PREV] = acc[_R_PREV], r, force, t
+    acc[_R_LAST] = r
+
+
+@njit(cache=True)
+def _metrics(acc, status, steps, r_threshold):
+    # the envelope falls below the threshold after its last peak without a further peak
+    if (acc[_ENV] == 0.0 and acc[_PEAK_R] >= r_threshold > acc[_R_LAST]
+            and acc[_T_PREV] > acc[_PEAK_T]):
+        acc[_ENV_T] = _crossing(acc[_PEAK_T], acc[_PEAK_R], acc[_T_PREV], acc[_R_LAST],
+                                r_threshold)
+        acc[_ENV] = 1.0
+    m = np.full(N_METRICS, np.nan)
+    m[_M_STATUS], m[_M_STEPS] = status, steps
+    m[_M_BAL_T] = acc[_BAL_T] if acc[_BAL] == 1.0 else np.nan
+    m[_M_BAL] = acc[_BAL]
+    m[_M_ENV_T] = acc[_ENV_T] if acc[_ENV] == 1.0 else np.nan
+    m[_M_ENV] = acc[_ENV]
+    m[_M_F_MAX], m[_M_F_MAX_T] = acc[_F_MAX], acc[_F_MAX_T]
+    m[_M_F_T] = acc[_F_T] if acc[_F_DONE] == 1.0 else np.nan
+    m[_M_F_DONE] = acc[_F_DONE]
+    m[_M_R_FINAL] = acc[_R_LAST]
+    return m
+
+
+@njit(cache=True)
+def _sample(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
+    r, force = radius_and_force(form, ys, p)
+    if j < out.shape[0]:
+        out[j, :] = ys
+    _observe(acc, t, r, force, r_threshold, f_threshold)
+
+
+@njit(cache=True)
+def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
+              max_steps, out):
+    """Integrate from ``(t0, y0)`` to ``t_end``; return the metrics row (``METRICS``).
+
+    The solution is sampled every ``sample_dt`` (cubic Hermite interpolation inside each step).
+    On the samples: the balance time (after the last sample with ``r >= r_threshold``, the
+    crossing time interpolated linearly; ``balanced = 0`` if ``r`` is above the threshold at the
+    end: censored), the paper's envelope variant (crossing of the piecewise-linear envelope
+    through the local maxima of ``r``), the bearing-force maximum and its decay time (same rule as
+    the balance time with ``f_threshold``).  Samples are stored in ``out`` (rows) while it has
+    room (pass an empty ``(0, len(y0))`` array for none).  A failed integration sets ``status``.
+    """
+    ny = y0.size
+    y = y0.copy()
+    f0 = np.empty(ny)
+    rhs(form, t0, y, p, f0)
+    k2, k3, k4, k5, k6, k7 = (np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny),
+                              np.empty(ny), np.empty(ny))
+    ytmp, ynew, err, ys = np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny)
+    acc = _new_analysers()
+    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f0))):
+        return _metrics(acc, NON_FINITE, 0, r_threshold)
+    _sample(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
+    j_sample = 1
+    t_sample = t0 + sample_dt
+    t = t0
+    h = _initial_step(form, t0, y, f0, p, rtol, atol, t_end - t0)
+    status = OK
+    steps = 0
+    while t < t_end:
+        if steps >= max_steps:
+            status = MAX_STEPS
+            break
+        if not h >= 1e-14 * max(1.0, abs(t)):      # also catches a NaN step
+            status = STEP_UNDERFLOW if np.isfinite(h) else NON_FINITE
+            break
+        h = min(h, t_end - t)
+        for j in range(ny):
+            ytmp[j] = y[j] + h * A21 * f0[j]
+        rhs(form, t + C2 * h, ytmp, p, k2)
+        for j in range(ny):
+            ytmp[j] = y[j] + h * (A31 * f0[j] + A32 * k2[j])
+        rhs(form, t + C3 * h, ytmp, p, k3)
+        for j in range(ny):
+            ytmp[j] = y[j] + h * (A41 * f0[j] + A42 * k2[j] + A43 * k3[j])
+        rhs(form, t + C4 * h, ytmp, p, k4)
+        for j in range(ny):
+            ytmp[j] = y[j] + h * (A51 * f0[j] + A52 * k2[j] + A53 * k3[j] + A54 * k4[j])
+        rhs(form, t + C5 * h, ytmp, p, k5)
+        for j in range(ny):
+            ytmp[j] = y[j] + h * (A61 * f0[j] + A62 * k2[j] + A63 * k3[j] + A64 * k4[j]
+                                  + A65 * k5[j])
+        rhs(form, t + h, ytmp, p, k6)
+        for j in range(ny):
+            ynew[j] = y[j] + h * (B1 * f0[j] + B3 * k3[j] + B4 * k4[j] + B5 * k5[j] + B6 * k6[j])
+        rhs(form, t + h, ynew, p, k7)
+        for j in range(ny):
+            err[j] = h * (E1 * f0[j] + E3 * k3[j] + E4 * k4[j] + E5 * k5[j] + E6 * k6[j]
+                          + E7 * k7[j])
+        e = _norm(err, y, ynew, rtol, atol)
+        if not np.isfinite(e) or e > 1.0:
+            h *= 0.2 if not np.isfinite(e) else max(0.2, 0.9 * e ** -0.2)
+            continue
+        steps += 1
+        if not np.all(np.isfinite(ynew)):
+            status = NON_FINITE
+            break
+        t_new = t + h
+        while t_sample <= t_new + 1e-12 * sample_dt:
+            _hermite(min((t_sample - t) / h, 1.0), h, y, f0, ynew, k7, ys)
+            _sample(form, p, acc, out, j_sample, t_sample, ys, r_threshold, f_threshold)
+            j_sample += 1
+            t_sample = t0 + j_sample * sample_dt
+        t = t_new
+        y[:] = ynew
+        f0[:] = k7
+        h *= min(5.0, max(0.2, 0.9 * e ** -0.2)) if e > 0.0 else 5.0
+    return _metrics(acc, status, steps, r_threshold)
+
+
+@njit(cache=True, parallel=True)
+def integrate_batch(form, params, y0s, t_end, rtol, atol, sample_dt, r_threshold,
+                    f_threshold, max_steps, order):
+    """Run ``integrate`` for every row of ``params``/``y0s`` in parallel (``prange`` over the
+    shuffled ``order``, since run lengths vary a lot); return the metrics, one row per run."""
+    n_runs = params.shape[0]
+    result = np.empty((n_runs, N_METRICS))
+    for q in prange(n_runs):
+        i = order[q]
+        empty = np.empty((0, y0s.shape[1]))
+        result[i, :] = integrate(form, params[i], y0s[i], 0.0, t_end, rtol, atol, sample_dt,
+                                 r_threshold, f_threshold, max_steps, empty)
+    return result

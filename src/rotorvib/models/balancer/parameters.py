@@ -1,0 +1,168 @@
+"""Parameters of the automatic ball balancer (papers A and B) and the maps between them.
+
+:class:`Balancer` holds paper B's dimensional machine (disk mass ``M``, ball mass ``m``, race
+radius ``R``, eccentricity ``eps``, support ``k`` and ``c``, ball drag ``D``, ``n`` balls).
+:class:`Dimensionless` holds paper A's total-mass-scaled groups (digest A):
+``mu = m/M_t``, ``rho = m R/(M eps)``, ``zeta = c/(2 sqrt(k M_t))``, ``beta = D/(m R^2 w_n)``,
+``w_n = sqrt(k/M_t)``, ``M_t = M + n m``.  Paper B's own groups (eq. 25) use the disk mass:
+``zeta_B = c/(2 sqrt(M k))``, ``m_bar = m/M``, ``eps_bar = eps/R``, ``beta_B = D/(m R^2 w_nB)``,
+``w_nB = sqrt(k/M)`` (eq. 26).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorvib.models.balancer import engine
+
+
+@dataclass(frozen=True)
+class Dimensionless:
+    """Paper A's groups on the total-mass scale (time unit ``1/w_n``, length unit ``R``)."""
+
+    mu: float
+    rho: float
+    zeta: float
+    beta: float
+    n: int = 2
+
+    def balanced_angle(self) -> float:
+        """Ball angle of the balanced state for two balls, ``arccos(-1/(2 rho))`` (rad)."""
+        return balanced_angle(1.0 / self.rho, 1.0, self.n)
+
+
+@dataclass(frozen=True)
+class Balancer:
+    """Paper B's dimensional balancer (SI units)."""
+
+    M: float
+    m: float
+    R: float
+    eps: float
+    k: float
+    c: float
+    D: float
+    n: int = 2
+
+    @classmethod
+    def from_paper_b(cls, *, M, k, R, m_bar, eps_bar, zeta, beta, n=2) -> "Balancer":
+        """From paper B's dimensionless groups (eqs 25-26)."""
+        omega_n = np.sqrt(k / M)
+        m = m_bar * M
+        return cls(M=M, m=m, R=R, eps=eps_bar * R, k=k, c=2 * zeta * np.sqrt(M * k),
+                   D=beta * m * R**2 * omega_n, n=n)
+
+    @property
+    def total_mass(self) -> float:
+        return self.M + self.n * self.m
+
+    @property
+    def omega_n(self) -> float:
+        """Paper B's natural frequency sqrt(k/M) (eq. 26), disk mass only."""
+        return float(np.sqrt(self.k / self.M))
+
+    @property
+    def omega_n_total(self) -> float:
+        """Paper A's natural frequency sqrt(k/M_t) on the total mass."""
+        return float(np.sqrt(self.k / self.total_mass))
+
+    def dimensionless(self) -> Dimensionless:
+        """Paper A's groups of this machine (digest A)."""
+        mt, wn = self.total_mass, self.omega_n_total
+        return Dimensionless(mu=self.m / mt, rho=self.m * self.R / (self.M * self.eps),
+                             zeta=self.c / (2 * np.sqrt(self.k * mt)),
+                             beta=self.D / (self.m * self.R**2 * wn), n=self.n)
+
+    def balanced_angle(self) -> float:
+        """Eq. (33): ``phi_1* = -phi_2* = arccos(-eps M / (2 m R))`` for two balls (rad)."""
+        return balanced_angle(self.eps * self.M, self.m * self.R, self.n)
+
+    def can_balance(self) -> bool:
+        """Existence bound (34): ``m/M >= eps/(2R)`` (two balls)."""
+        return self.m / self.M >= 0.5 * self.eps / self.R
+
+
+def balanced_angle(unbalance: float, ball_moment: float, n: int = 2) -> float:
+    """Symmetric balanced angle of two balls, ``arccos(-unbalance / (2 ball_moment))``.
+
+    Raises ``ValueError`` when the balls cannot compensate the unbalance (bound 34)."""
+    if n != 2:
+        raise ValueError("the closed-form balanced angle (eq. 33) is for two balls")
+    arg = -unbalance / (2 * ball_moment)
+    if arg < -1:
+        raise ValueError(f"no balanced state: the balls' moment {ball_moment:.4g} is below half "
+                         f"the unbalance {unbalance:.4g} (existence bound, eq. 34)")
+    return float(np.arccos(arg))
+
+
+@dataclass(frozen=True)
+class SpeedProfile:
+    """Prescribed disk speed: ``kind`` "constant" or "runup" (eq. 37 scaled to ``omega`` with
+    ramp time ``t_ramp``), disk-angle ``kinematics`` "printed" (paper B's ``w t``) or
+    "consistent" (``int w dt``).  Units follow the form: rad/s and s, or dimensionless."""
+
+    omega: float
+    kind: str = "constant"
+    t_ramp: float = 0.5
+    kinematics: str = "consistent"
+
+    def __post_init__(self):
+        if self.kind not in ("constant", "runup"):
+            raise ValueError(f"speed profile kind must be 'constant' or 'runup', not {self.kind!r}")
+        if self.kinematics not in ("printed", "consistent"):
+            raise ValueError("kinematics must be 'printed' or 'consistent', "
+                             f"not {self.kinematics!r}")
+        if self.t_ramp <= 0:
+            raise ValueError(f"t_ramp must be > 0, not {self.t_ramp}")
+
+    @property
+    def profile_code(self) -> int:
+        return engine.RUNUP if self.kind == "runup" else engine.CONSTANT
+
+    def speed(self, t):
+        """``(w, w', w'', int w dt)`` at times ``t`` (vectorised)."""
+        out = np.array([engine.speed(float(ti), self.omega, self.t_ramp, self.profile_code)
+                        for ti in np.atleast_1d(t)])
+        return tuple(out.T)
+
+
+def fixed_parameters(b: Balancer, profile: SpeedProfile) -> np.ndarray:
+    """Parameter array of the FIXED form (layout ``engine.P_FIXED``)."""
+    kin = engine.PRINTED if profile.kinematics == "printed" else engine.CONSISTENT
+    return np.array([b.M, b.m, b.R, b.eps, b.k, b.c, b.D, b.n, profile.omega, profile.t_ramp,
+                     profile.profile_code, kin], dtype=float)
+
+
+def rotating_parameters(d: Dimensionless, profile: SpeedProfile) -> np.ndarray:
+    """Parameter array of the ROTATING form (layout ``engine.P_ROT``)."""
+    if profile.kinematics != "consistent":
+        raise ValueError("the rotating-frame form exists for the consistent kinematics only")
+    return np.array([d.mu, d.rho, d.zeta, d.beta, d.n, profile.omega, profile.t_ramp,
+                     profile.profile_code], dtype=float)
+
+
+def fixed_state(n: int, *, r0: float, theta0: float, phi0, rates=None) -> np.ndarray:
+    """FIXED-form state from paper B's polar initial conditions (eq. 36): C at ``(r0, theta0)``
+    in the fixed frame, ball angles ``phi0`` (rad), all rates zero unless ``rates`` is given."""
+    phi0 = np.asarray(phi0, float)
+    if phi0.shape != (n,):
+        raise ValueError(f"need {n} initial ball angles, got {phi0.shape}")
+    y = np.zeros(2 * (n + 2))
+    y[0], y[1] = r0 * np.cos(theta0), r0 * np.sin(theta0)
+    y[2:n + 2] = phi0
+    if rates is not None:
+        y[n + 2:] = rates
+    return y
+
+
+def paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2):
+    """Paper A's groups ``(mu, rho, zeta_t, beta_t, Omega_t)`` from paper B's (eq. 25),
+    vectorised: with ``s = sqrt(1 + n m_bar)``, ``mu = m_bar/(1 + n m_bar)``,
+    ``rho = m_bar/eps_bar``, ``zeta_t = zeta/s``, ``beta_t = beta s``, ``Omega_t = omega_bar s``
+    (digest A).  Eigenvalues on the total-mass scale are ``s`` times those on paper B's."""
+    m_bar, eps_bar, zeta, beta, omega_bar = np.broadcast_arrays(
+        *(np.asarray(v, dtype=float) for v in (m_bar, eps_bar, zeta, beta, omega_bar)))
+    s = np.sqrt(1 + n * m_bar)
+    return m_bar / (1 + n * m_bar), m_bar / eps_bar, zeta / s, beta * s, omega_bar * s

@@ -1,0 +1,198 @@
+"""Public simulation API of the ball-balancer engine: one run, a trajectory, a batch.
+
+A failed integration raises :class:`~rotorvib.methods.integrate.IntegrationError` (single runs) or is
+flagged in the ``status`` column (batches, with :func:`check_batch` to raise); a run that is not
+balanced by its end is *censored*: its balance time is NaN and ``censored`` is True.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorvib.methods.integrate import IntegrationError
+from rotorvib.models.balancer import engine
+from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
+                                                 fixed_state)
+
+#: Default tolerances, chosen from the convergence study
+#: ``python -m benchmarks.balancer --convergence`` (paper B run-up: balance time within 1e-6 s
+#: and peak force within 2e-7 of rtol = 1e-12).
+RTOL, ATOL = 1e-8, 1e-11
+MAX_STEPS = 50_000_000
+
+
+@dataclass(frozen=True)
+class BalanceCriterion:
+    """When a run counts as balanced, and how long and how finely it is observed.
+
+    A run is balanced at the time after which the whirl radius stays below ``r_threshold``
+    (paper B, section 7) and its bearing force has decayed at the time after which
+    ``F = k r + c r'`` stays below ``f_threshold``; both are read on samples every ``sample_dt``
+    of a run that ends at ``t_end``.
+    """
+
+    r_threshold: float
+    f_threshold: float
+    t_end: float
+    sample_dt: float
+
+    @classmethod
+    def from_config(cls, balance: dict, k: float) -> "BalanceCriterion":
+        """From the ``balance`` config section; the force threshold is the force of a support of
+        stiffness ``k`` at the radius threshold, ``f_threshold = k r_threshold``."""
+        return cls(r_threshold=balance["r_threshold"], f_threshold=k * balance["r_threshold"],
+                   t_end=balance["t_end"], sample_dt=balance["sample_dt"])
+
+    @property
+    def n_samples(self) -> int:
+        """Number of samples ``t = 0, sample_dt, ...`` up to ``t_end``."""
+        return int(np.floor(self.t_end / self.sample_dt + 1e-9)) + 1
+
+    @property
+    def times(self) -> np.ndarray:
+        return np.arange(self.n_samples) * self.sample_dt
+
+
+def metric(metrics: np.ndarray, name: str) -> np.ndarray:
+    """The column ``name`` (one of ``engine.METRICS``) of a metrics row or table."""
+    return metrics[..., engine.COLUMN[name]]
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """Balance time (threshold and envelope definitions) and bearing force of one run."""
+
+    balance_time: float
+    censored: bool
+    envelope_time: float
+    envelope_censored: bool
+    force_max: float
+    force_max_time: float
+    force_decay_time: float
+    force_censored: bool
+    t_end: float
+    n_steps: int
+
+    @classmethod
+    def from_metrics(cls, m, t_end) -> "RunResult":
+        value = {name: float(metric(m, name)) for name in engine.METRICS}
+        return cls(balance_time=value["balance_time"], censored=not value["balanced"],
+                   envelope_time=value["envelope_time"],
+                   envelope_censored=not value["envelope_balanced"],
+                   force_max=value["force_max"], force_max_time=value["force_max_time"],
+                   force_decay_time=value["force_decay_time"],
+                   force_censored=not value["force_decayed"], t_end=float(t_end),
+                   n_steps=int(value["n_steps"]))
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Sampled solution: ``t`` and ``y`` (rows of the form's state), with the run's result."""
+
+    t: np.ndarray
+    y: np.ndarray
+    result: RunResult
+
+    @property
+    def n_balls(self) -> int:
+        return self.y.shape[1] // 2 - 2
+
+    @property
+    def r(self) -> np.ndarray:
+        """Whirl radius of the geometric centre (m in the FIXED form, units of R in ROTATING)."""
+        return np.hypot(self.y[:, 0], self.y[:, 1])
+
+    def bearing_force(self, k: float, c: float) -> np.ndarray:
+        """``F = k r + c r'`` (paper B, eq. 40) at the samples (FIXED form)."""
+        n = self.n_balls
+        x, y, xd, yd = self.y[:, 0], self.y[:, 1], self.y[:, n + 2], self.y[:, n + 3]
+        r = self.r
+        rdot = np.divide(x * xd + y * yd, r, out=np.zeros_like(r), where=r > 0)
+        return k * r + c * rdot
+
+
+def _raise_on_failure(m):
+    status = int(metric(m, "status"))
+    if status != engine.OK:
+        raise IntegrationError(f"balancer integration failed: {engine.STATUS_TEXT[status]} "
+                               f"after {int(metric(m, 'n_steps'))} steps")
+
+
+def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *,
+        rtol: float = RTOL, atol: float = ATOL, store: bool = False):
+    """Integrate one run from t = 0 to ``criterion.t_end``; return a :class:`Trajectory`
+    (``store=True``) or a :class:`RunResult`."""
+    c = criterion
+    out = np.empty((c.n_samples if store else 0, len(y0)))
+    m = engine.integrate(form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end),
+                         rtol, atol, c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out)
+    _raise_on_failure(m)
+    result = RunResult.from_metrics(m, c.t_end)
+    if not store:
+        return result
+    return Trajectory(t=c.times, y=out, result=result)
+
+
+def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: float = 1e-3,
+             theta0: float = 0.0, sample_dt: float = 1e-3, r_threshold: float = 1e-4,
+             f_threshold: float | None = None, store: bool = False, **tolerances):
+    """Paper B's balancer from rest relative to the disk, C at ``(r0, theta0)``, balls at
+    ``phi0`` (rad) (eq. 36).  The force threshold defaults to ``k r_threshold`` (the force of
+    the balance criterion).  Returns a :class:`RunResult`, or a :class:`Trajectory` with
+    ``store=True``."""
+    y0 = fixed_state(b.n, r0=r0, theta0=theta0, phi0=phi0)
+    criterion = BalanceCriterion(r_threshold=r_threshold, t_end=t_end, sample_dt=sample_dt,
+                                 f_threshold=b.k * r_threshold if f_threshold is None
+                                 else f_threshold)
+    return run(engine.FIXED, fixed_parameters(b, profile), y0, criterion, store=store,
+               **tolerances)
+
+
+def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: BalanceCriterion, *,
+              rtol: float = RTOL, atol: float = ATOL, seed: int = 0, chunk: int = 256,
+              progress: bool = True) -> np.ndarray:
+    """Metrics (rows of ``engine.METRICS``, read with :func:`metric`) of many runs, in parallel
+    on all cores.
+
+    Runs are shuffled (seeded) so that long and short runs mix across threads, and processed in
+    chunks so that progress can be shown on stderr.  Failed runs are flagged in the ``status``
+    column, not raised: see :func:`check_batch`.
+    """
+    c = criterion
+    params = np.ascontiguousarray(params, dtype=float)
+    y0s = np.ascontiguousarray(y0s, dtype=float)
+    n = params.shape[0]
+    order = np.random.default_rng(seed).permutation(n)
+    result = np.empty((n, engine.N_METRICS))
+    for start in range(0, n, chunk):
+        idx = order[start:start + chunk]
+        result[idx] = engine.integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol,
+                                             atol, c.sample_dt, c.r_threshold, c.f_threshold,
+                                             MAX_STEPS, np.arange(len(idx)))
+        if progress and n > chunk:
+            done = min(start + chunk, n)
+            print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
+                  file=sys.stderr, flush=True)
+    if progress and n > chunk:
+        print(file=sys.stderr)
+    return result
+
+
+def check_batch(metrics: np.ndarray) -> None:
+    """Raise :class:`IntegrationError` listing the runs of a batch that failed."""
+    status = metric(metrics, "status")
+    failed = np.flatnonzero(status != engine.OK)
+    if failed.size:
+        kinds = {engine.STATUS_TEXT[int(s)] for s in status[failed]}
+        raise IntegrationError(f"{failed.size} of {len(metrics)} balancer runs failed "
+                               f"({', '.join(sorted(kinds))}); first: run {failed[0]}")
+
+
+def use_threads(n: int) -> None:
+    """Limit the batch runner to ``n`` threads (a workflow job's declared threads)."""
+    import numba
+
+    numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))

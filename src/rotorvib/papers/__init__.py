@@ -1,0 +1,1 @@
+"""One package per paper: its studies (datasets), claims (comparison rows) and figures. No paper imports another."""

@@ -1,0 +1,1 @@
+"""Paper A: multiple scales and Lyapunov stability of the two-ball balancer (reconstructed model)."""

@@ -1,0 +1,135 @@
+"""Paper A's figures, drawn from the datasets only."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.io.plotting import figure
+
+METHOD_STYLE = {"runge_kutta": ("k", "-", "Runge-Kutta"), "one_term": ("C1", "--", "one term"),
+                "two_term": ("C0", ":", "two terms")}
+
+
+def _methods(ds):
+    return [str(m) for m in ds.method_name.values]
+
+
+def _three_methods(ds, variable, zoom, title, ylabel, i_beta):
+    fig, (a1, a2) = figure(2, 1, figsize=(7.0, 6.0))
+    tau = ds.tau.values
+    inside = (tau >= zoom[0]) & (tau <= zoom[1])
+    for k, method in enumerate(_methods(ds)):
+        color, ls, label = METHOD_STYLE[method]
+        y = ds[variable].values[i_beta, k]
+        a1.plot(tau, y, color=color, ls=ls, lw=1, label=label)
+        a2.plot(tau[inside], y[inside], color=color, ls=ls, lw=1.2, label=label)
+    a1.set(ylabel=ylabel, title=title)
+    a2.set(xlabel="dimensionless time tau = w_n t", ylabel=ylabel,
+           title=f"zoom on tau in [{zoom[0]:g}, {zoom[1]:g}]")
+    a1.legend(fontsize=8)
+    return fig
+
+
+def fig2(resp, paper, zoom, beta):
+    i = int(np.argmin(np.abs(resp.beta.values - beta)))
+    return _three_methods(resp, "u", zoom, "Fig 2: x of the geometric centre (rotating frame)",
+                          "x / R", i)
+
+
+def fig3(resp, paper, zoom, beta):
+    i = int(np.argmin(np.abs(resp.beta.values - beta)))
+    return _three_methods(resp, "v", zoom, "Fig 3: y of the geometric centre (rotating frame)",
+                          "y / R", i)
+
+
+def fig4(resp, paper, beta):
+    i = int(np.argmin(np.abs(resp.beta.values - beta)))
+    fig, axes = figure(2, 1, sharex=True, figsize=(7.0, 6.0))
+    tau = resp.tau.values
+    target = float(resp.balanced_angle)
+    for ax, name, sign in zip(axes, ("alpha1", "alpha2"), (1, -1)):
+        for k, method in enumerate(_methods(resp)):
+            color, ls, label = METHOD_STYLE[method]
+            ax.plot(tau, resp[name].values[i, k], color=color, ls=ls, lw=1, label=label)
+        ax.axhline(sign * target, color="crimson", ls="--", lw=1,
+                   label=f"balanced angle {sign * target:.1f} deg")
+        ax.set(ylabel=f"{name} (deg)")
+        ax.legend(fontsize=8)
+    axes[0].set(title="Fig 4: ball angles")
+    axes[1].set(xlabel="dimensionless time tau")
+    return fig
+
+
+def _beta_family(resp, betas, names, ylabels, title):
+    """Runge-Kutta responses of ``names`` (two panels) for several ball damping ratios."""
+    fig, axes = figure(2, 1, sharex=True, figsize=(7.0, 6.0))
+    tau = resp.tau.values
+    rk = _methods(resp).index("runge_kutta")
+    for j, beta in enumerate(betas):
+        i = int(np.argmin(np.abs(resp.beta.values - beta)))
+        for ax, name in zip(axes, names):
+            ax.plot(tau, resp[name].values[i, rk], color=f"C{j}", lw=0.9, label=f"beta = {beta:g}")
+    for ax, ylabel in zip(axes, ylabels):
+        ax.set(ylabel=ylabel)
+    axes[0].set(title=title)
+    axes[1].set(xlabel="dimensionless time tau")
+    axes[0].legend(fontsize=8)
+    return fig
+
+
+def fig5(resp, paper, betas):
+    return _beta_family(resp, betas, ("u", "v"), ("x / R", "y / R"),
+                        "Fig 5: effect of ball damping (Runge-Kutta)")
+
+
+def fig6(resp, paper, betas):
+    return _beta_family(resp, betas, ("alpha1", "alpha2"), ("alpha1 (deg)", "alpha2 (deg)"),
+                        "Fig 6: ball angles for three beta (Runge-Kutta)")
+
+
+def fig7(region, paper):
+    n = region.zeta.size
+    fig, axes = figure(1, n, figsize=(5.0 * n, 4.4), sharey=True)
+    axes = np.atleast_1d(axes)
+    W, B = np.meshgrid(region.omega.values, region.beta.values)
+    for k, ax in enumerate(axes):
+        lyap = region.growth_lyapunov.values[k]
+        ax.contourf(W, B, lyap < 0, levels=[0.5, 1.5], colors=["#9ecae1"])
+        ax.contour(W, B, region.growth_mms.values[k], levels=[0], colors="k", linewidths=2.5)
+        ax.contour(W, B, lyap, levels=[0], colors="C1", linewidths=1.2, linestyles="--")
+        ax.plot([], [], color="#9ecae1", lw=8, label="stable (Lyapunov)")
+        ax.plot([], [], "k", lw=2.5, label="boundary, multiple scales")
+        ax.plot([], [], "C1--", label="boundary, Lyapunov")
+        ax.set(xlabel="speed ratio Omega", title=f"Fig 7: zeta = {float(region.zeta[k]):g}")
+    axes[0].set(ylabel="ball damping ratio beta")
+    axes[0].legend(fontsize=8, loc="upper right")
+    return fig
+
+
+def error_study(err, paper):
+    fig, ax = figure()
+    d = err.delta.values
+    for name, color, slope in (("error_one_term", "C1", float(err.slope_one_term)),
+                               ("error_two_term", "C0", float(err.slope_two_term))):
+        ax.loglog(d, err[name].values, "o-", color=color,
+                  label=f"{name.replace('error_', '').replace('_', ' ')}: slope {slope:.2f}")
+    for order, ls in ((2, ":"), (3, "--")):
+        ref = err.error_one_term.values[-1] if order == 2 else err.error_two_term.values[-1]
+        ax.loglog(d, ref * (d / d[-1]) ** order, "k", ls=ls, lw=0.8, label=f"delta^{order}")
+    ax.set(xlabel="initial distance delta from the balanced state",
+           ylabel="max error against Runge-Kutta", title="Error of the multiple-scales solutions")
+    ax.legend(fontsize=8)
+    return fig
+
+
+def slow_flow(flow, paper):
+    fig, ax = figure()
+    ax.plot(flow.critical_speed_exact.values, flow.beta.values, "k", lw=1.6,
+            label="exact (full linearisation)")
+    ax.plot(flow.critical_speed_slow_flow.values, flow.beta.values, "C1--", lw=1.4,
+            label="small-mu slow flow")
+    ax.axvline(1.0, color="grey", ls=":", lw=1, label="Omega = 1")
+    ax.set(xlabel="lowest stable speed ratio Omega", ylabel="ball damping ratio beta",
+           title="Slow flow against the exact stability boundary")
+    ax.legend(fontsize=8)
+    return fig

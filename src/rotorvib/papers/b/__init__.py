@@ -1,0 +1,1 @@
+"""Paper B: damping ratio and ball mass of a two-ball balancer with a run-up."""

@@ -1,0 +1,118 @@
+"""Paper B's machine, initial state, run-up and balance criterion, and the run parameters a study
+can vary.
+
+One :class:`Setup` is built from the configuration and handed to every study and to the genetic
+algorithm's objective, so that a run is set up in one place: the balancer of eqs (25)-(26) with
+the ball mass ``mass``, damping ratio ``beta``, eccentricity ratio ``eps_bar`` (and optionally
+another operating ``speed``, race radius ``R`` or support damping ``zeta``), balls at
+``phi0_deg``, the disk centre at ``(r0, theta0)`` (eq. 36) and the run-up of eq. (37).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorvib.io.coords import axis_coord
+from rotorvib.models.balancer import engine
+from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
+                                                 fixed_state)
+from rotorvib.models.balancer.simulate import BalanceCriterion, check_batch, run_batch
+
+REFERENCE = ("Paper B: M. Rezaee, R. Fathi, The effect of damping ratio and balls mass on the "
+             "stability of automatic ball balancer and determining their optimum values, "
+             "Modares Mechanical Engineering 14(3):110-118, 2014 (Persian)")
+
+#: Parameters of one run that a study may vary or fix: long name and units of each.
+RUN_PARAMETERS = {
+    "beta": ("ball damping ratio beta", "1"),
+    "mass": ("ball mass m", "kg"),
+    "eps_bar": ("eccentricity ratio eps/R", "1"),
+    "speed": ("operating speed", "rad s-1"),
+    "R": ("race radius R", "m"),
+    "zeta": ("support damping ratio", "1"),
+}
+#: How a fixed run parameter is written in a summary: symbol and unit suffix.
+SYMBOLS = {"mass": ("m", " kg"), "speed": ("omega", " rad/s"), "R": ("R", " m")}
+
+KINEMATICS_LONG_NAME = ("disk-angle kinematics: printed (w t, as in eqs 7-9) or consistent "
+                        "(int w dt)")
+IC_LONG_NAME = "initial ball angles, eq. (39)"
+
+
+def study_problem(study: dict) -> str | None:
+    """What is wrong with a ``balance_studies`` entry of the config, or None: its axis, ``each``
+    and ``fixed`` parameters must name beta, mass and eps_bar, each once."""
+    given = [study["axis"], *study.get("each", {}), *study["fixed"]]
+    repeated = sorted({name for name in given if given.count(name) > 1})
+    missing = sorted({"beta", "mass", "eps_bar"} - set(given))
+    if repeated:
+        return f"parameter(s) {repeated} given more than once (axis, each, fixed)"
+    if missing:
+        return f"parameter(s) {missing} missing: give them in 'fixed' or 'each'"
+    return None
+
+
+def dataset_attrs(title: str, summary: str, where: str) -> dict:
+    """Global attributes of a paper B dataset; ``where`` names the figures/tables/equations."""
+    return {"title": f"Paper B: {title}", "summary": summary,
+            "references": f"{REFERENCE}; {where}"}
+
+
+def parameter_coord(name: str, values) -> dict:
+    """Coordinate of run parameter ``name`` (:data:`RUN_PARAMETERS`) over ``values``."""
+    return axis_coord(name, values, *RUN_PARAMETERS[name])
+
+
+def describe(fixed: dict) -> str:
+    """``{"mass": 0.01, "beta": 1.0}`` -> ``"m = 0.01 kg, beta = 1.0"``."""
+    return ", ".join(f"{SYMBOLS.get(k, (k, ''))[0]} = {v}{SYMBOLS.get(k, (k, ''))[1]}"
+                     for k, v in fixed.items())
+
+
+@dataclass(frozen=True)
+class Setup:
+    """Paper B's machine, initial state, speed profile and balance criterion (config)."""
+
+    M: float
+    k: float
+    R: float
+    n: int
+    zeta: float
+    r0: float
+    theta0: float
+    omega: float
+    t_ramp: float
+    criterion: BalanceCriterion
+
+    @classmethod
+    def from_config(cls, machine, initial_state, speed, balance) -> "Setup":
+        """From the config sections of the same names (``paper_b.*``)."""
+        return cls(**machine, **initial_state, **speed,
+                   criterion=BalanceCriterion.from_config(balance, machine["k"]))
+
+    def balancer(self, *, mass, eps_bar, beta, R=None, zeta=None) -> Balancer:
+        return Balancer.from_paper_b(M=self.M, k=self.k, R=self.R if R is None else R,
+                                     m_bar=mass / self.M, eps_bar=eps_bar,
+                                     zeta=self.zeta if zeta is None else zeta, beta=beta, n=self.n)
+
+    def profile(self, kinematics, speed=None) -> SpeedProfile:
+        """The run-up of eq. (37) to ``speed`` (default: the configured ``omega``)."""
+        return SpeedProfile(self.omega if speed is None else speed, "runup", self.t_ramp,
+                            kinematics)
+
+    def run_inputs(self, *, mass, eps_bar, beta, phi0_deg, kinematics, speed=None, R=None,
+                   zeta=None) -> tuple[np.ndarray, np.ndarray]:
+        """Engine parameters and initial state of one run (fixed frame)."""
+        b = self.balancer(mass=mass, eps_bar=eps_bar, beta=beta, R=R, zeta=zeta)
+        y0 = fixed_state(self.n, r0=self.r0, theta0=self.theta0, phi0=np.radians(phi0_deg))
+        return fixed_parameters(b, self.profile(kinematics, speed)), y0
+
+    def runs(self, inputs, *, progress: bool = True) -> np.ndarray:
+        """Metrics of many ``(params, y0)`` runs, in parallel; failures raise."""
+        params = np.stack([p for p, _ in inputs])
+        y0s = np.stack([y for _, y in inputs])
+        metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress)
+        check_batch(metrics)
+        return metrics

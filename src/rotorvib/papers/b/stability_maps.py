@@ -1,0 +1,53 @@
+"""Paper B's Figs 2-3: linearised stability of the balanced state r* = 0 at constant speed
+(eqs 27-32) over a (beta, omega_bar) or (m_bar, omega_bar) grid."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rotorvib.io.coords import axis_coord
+from rotorvib.models.balancer import stability
+from rotorvib.models.balancer.parameters import paper_b_groups
+from rotorvib.papers.b.setup import dataset_attrs
+
+def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where) -> xr.Dataset:
+    """Growth rate of the balanced state (largest real part of the eigenvalues, in units of
+    paper B's omega_n) over a 2-D grid; ``m_bar`` or ``beta`` is the grid's first axis."""
+    first = "m_bar" if np.ndim(m_bar) else "beta"
+    axis = np.asarray(m_bar if first == "m_bar" else beta, dtype=float)
+    A, W = np.meshgrid(axis, np.asarray(omega_bar, dtype=float), indexing="ij")
+    mb, bt = (A, np.full(A.shape, beta)) if first == "m_bar" else (np.full(A.shape, m_bar), A)
+    mu, rho, z, b, Om = paper_b_groups(mb, eps_bar, zeta, bt, W, n)
+    exists = rho >= 0.5
+    growth = np.full(A.shape, np.nan)
+    if exists.any():
+        growth[exists] = stability.max_real_part(mu[exists], rho[exists], z[exists], b[exists],
+                                                 Om[exists]) / np.sqrt(1 + n * mb[exists])
+    state = np.where(~exists, 2, np.where(growth < 0, 1, 0)).astype(np.int8)
+    names = {"m_bar": ("ball/disk mass ratio m/M", "1"), "beta": ("ball damping ratio beta", "1")}
+    return xr.Dataset(
+        {"growth_rate": ((first, "omega_bar"), growth,
+                         {"long_name": "largest real part of the eigenvalues / omega_n "
+                                       "(NaN: no balanced state)", "units": "1"}),
+         "state": ((first, "omega_bar"), state,
+                   {"long_name": "balanced state", "units": "1", "flag_values": np.int8([0, 1, 2]),
+                    "flag_meanings": "unstable stable no_balanced_state"}),
+         "critical_speed": (first, 1 / np.sqrt(1 + n * mb[:, 0]),
+                            {"long_name": "undamped critical speed of disk and balls, "
+                                          "sqrt(M/(M + n m)) (omega_bar)", "units": "1"}),
+         "fixed_eps_bar": ((), float(eps_bar), {"long_name": "eccentricity ratio eps/R",
+                                                "units": "1"}),
+         "fixed_zeta": ((), float(zeta), {"long_name": "support damping ratio", "units": "1"}),
+         **({"fixed_beta": ((), float(beta), {"long_name": "ball damping ratio", "units": "1"})}
+            if first == "m_bar" else
+            {"fixed_m_bar": ((), float(m_bar), {"long_name": "ball/disk mass ratio",
+                                               "units": "1"})})},
+        coords={**axis_coord(first, axis, *names[first]),
+                **axis_coord("omega_bar", omega_bar, "speed ratio omega/omega_n", "1")},
+        attrs=dataset_attrs(f"stability of the balanced state ({where})",
+                            "Linearised stability of the balanced state r* = 0 at constant speed "
+                            "(eqs 27-32) on a grid", where),
+    )
+
+

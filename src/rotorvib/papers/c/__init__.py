@@ -1,0 +1,1 @@
+"""Paper C: dual torsional dynamic vibration absorber."""

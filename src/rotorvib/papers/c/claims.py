@@ -1,0 +1,204 @@
+"""Paper C's stated values and claims, evaluated from the datasets of the workflow.
+
+:func:`reproduce` reads the four datasets (GA, Fig 5, Fig 6, time responses) and returns one
+:class:`~rotorvib.comparison.Reproduced` row per quantity of ``data/paper_values.csv`` for paper C,
+each with an explanation computed from the data.  Nothing here integrates or solves the model:
+it only measures the datasets.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+import xarray as xr
+
+from rotorvib.comparison import Reproduced, supported
+from rotorvib.models.absorber.parameters import DUAL_NAMES, dual_from_vector
+from rotorvib.models.absorber.time_response import peak_amplitude
+
+PAPER = "C"
+_row = partial(Reproduced.of, PAPER)
+
+
+def _local_maxima(w, D):
+    inner = (D[1:-1] > D[:-2]) & (D[1:-1] >= D[2:])
+    return w[1:-1][inner], D[1:-1][inner]
+
+
+def _peaks_per_period(t, x, period):
+    """Peak |x| in consecutive windows of one period: the envelope read off a plot."""
+    edges = np.arange(t[0], t[-1] + period, period)
+    idx = np.searchsorted(t, edges)
+    return np.array([np.max(np.abs(x[a:b])) for a, b in zip(idx[:-1], idx[1:]) if b > a])
+
+
+def _design_text(x) -> str:
+    return ", ".join(f"{n} = {v:.4g}" for n, v in zip(DUAL_NAMES, x))
+
+
+def ga_rows(ga: xr.Dataset, omega_n: float, J: float, paper: dict) -> list[Reproduced]:
+    x_opt, x_t2 = ga.x_opt.values, ga.x_table2.values
+    lo, hi = ga.lower_bound.values, ga.upper_bound.values
+    sets = dual_from_vector(x_t2)
+    tuning = ", ".join(f"set {j}: sqrt(2k/m) = {s.omega_a / omega_n:.3f} omega_n, "
+                       f"zeta = c/(m omega_a) = {s.c / (s.m * s.omega_a):.2f}"
+                       for j, s in enumerate(sets, 1))
+    mu_eff = sum(2 * s.m * s.d**2 for s in sets) / J
+    zeta_dh = np.sqrt(3 * mu_eff / (8 * (1 + mu_eff) ** 3))
+    th_t2, th_pr, th_opt = (float(ga[k]) for k in ("theta_table2", "theta_table2_printed_det",
+                                                    "theta_opt"))
+    at_bound = [f"{n} at its {'lower' if np.isclose(v, a, rtol=1e-3) else 'upper'} bound"
+                for n, v, a, b in zip(DUAL_NAMES, x_opt, lo, hi)
+                if np.isclose(v, a, rtol=1e-3) or np.isclose(v, b, rtol=1e-3)]
+    ga_text = (f"the GA (same bounds, population and generations) finds {_design_text(x_opt)} "
+               f"with {', '.join(at_bound) or 'no variable at a bound'}: the objective, |Theta| "
+               f"at the single frequency omega_n, rewards the largest added inertia with the "
+               f"least damping and both sets tuned to omega_n, so Table 2 is not an optimum of "
+               f"the stated problem")
+    rows = [
+        _row("theta_table2", th_t2,
+             f"eq. (20) with the true determinant gives {th_t2:.3g} rad (D = "
+             f"{th_t2 / paper['static']:.2f}); with the printed determinant {th_pr:.3g} rad; "
+             f"neither gives the printed value. Table 2 tunes {tuning}; for its added inertia "
+             f"ratio {mu_eff:.3f} Den Hartog's optimum is zeta = {zeta_dh:.2f}, so the absorbers "
+             f"are over-damped and leave a large resonant amplitude"),
+        _row("theta_ga", th_opt,
+             f"{ga_text}; |Theta(omega_n)| = {th_opt:.3g} rad, {th_t2 / th_opt:.0f} times below "
+             f"Table 2's true value"),
+        _row("mu_opt", float(ga.mass_ratio_opt),
+             f"m2/m1 = {x_opt[1]:.4g}/{x_opt[0]:.4g} kg at the GA optimum; see theta_ga"),
+    ]
+    for i, name in enumerate(DUAL_NAMES):
+        where = next((b for b in at_bound if b.startswith(name + " ")), "inside the bounds")
+        rows.append(_row(f"table2_{name}", x_opt[i],
+                         f"GA optimum ({where}) beside Table 2; see theta_ga for why they differ"))
+    outside = [f"{n} = {v:.4g} outside [{a:.4g}, {b:.4g}]"
+               for n, v, a, b in zip(DUAL_NAMES, x_t2, lo, hi) if not a <= v <= b]
+    rows.append(_row("table2_within_bounds", None,
+                     f"{supported(not outside)}: "
+                     + ("; ".join(outside) if outside else "all eight values lie within the bounds")))
+    return rows
+
+
+def frequency_rows(fr: xr.Dataset, mr: xr.Dataset, claims: dict) -> list[Reproduced]:
+    w = fr.w.values
+    D_u = fr.D_table2_undamped.values
+    peaks_w, peaks_D = _local_maxima(w, D_u)
+    low, high = peaks_w[peaks_w < 1], peaks_w[peaks_w > 1]
+    if low.size == 0 or high.size == 0:
+        raise ValueError("the undamped response has no peak on one side of w = 1: widen the "
+                         "frequency range (paper_c.frequency_response)")
+    zero_at = w[np.argmin(D_u)]
+    D1 = {name: float(np.interp(1.0, w, fr[name].values)) for name in ("D_table2_undamped",
+                                                                        "D_table2", "D_ga")}
+    band_max = {name: float(fr[name].max()) for name in ("D_table2", "D_table2_undamped", "D_ga")}
+    mu = mr.mu.values
+
+    def D_mu(m, at):
+        i = int(np.argmin(np.abs(mu - m)))
+        if not np.isclose(mu[i], m):
+            raise ValueError(f"paper_c.mass_ratio_family.mu must contain {m} for the Fig 6 claims")
+        return float(np.interp(at, mr.w.values, mr.D.values[i]))
+
+    at1 = {m: D_mu(m, 1.0) for m in (0.2, 0.6, 0.85, 1.0)}
+    w_low = claims["fig6_w_low"]
+    at_low = {m: D_mu(m, w_low) for m in (0.85, 1.0)}
+    close = abs(at1[1.0] - at1[0.85]) / at1[0.85]
+    tol = claims["close_tolerance"]
+    return [
+        _row("omega_n", float(fr.omega_n), "sqrt(k_t/J) with J = M R^2/2 (Table 1)"),
+        _row("undamped_peak_low", low[-1],
+             f"local maximum of D for Table 2 with zero damping (peak D = {peaks_D[peaks_w < 1][-1]:.3g});"
+             " the printed value is read off Fig 5 to one decimal"),
+        _row("undamped_peak_high", high[0],
+             f"local maximum of D for Table 2 with zero damping (peak D = {peaks_D[peaks_w > 1][0]:.3g});"
+             " the printed value is read off Fig 5 to one decimal"),
+        _row("fig5_undamped_zero", None,
+             f"{supported(abs(zero_at - 1) <= 0.01)} to within 1 % of resonance: the "
+             f"undamped amplitude vanishes at w = {zero_at:.4f}, the frequency sqrt(2k/m) of "
+             f"Table 2's equally tuned sets, and is D = {D1['D_table2_undamped']:.3g} at w = 1"),
+        _row("fig5_damped_best", None,
+             f"{supported(band_max['D_table2'] < band_max['D_table2_undamped'])} as the lowest "
+             f"peak over the band: max D = {band_max['D_table2']:.3g} (Table 2) against "
+             f"{band_max['D_table2_undamped']:.3g} undamped; at w = 1 the undamped design is "
+             f"lower (D = {D1['D_table2_undamped']:.3g} vs {D1['D_table2']:.3g}); the GA optimum "
+             f"reaches D(1) = {D1['D_ga']:.3g} but max D = {band_max['D_ga']:.3g}"),
+        _row("fig6_085_best", None,
+             f"{supported(at1[0.85] < min(at1[0.2], at1[0.6]))}: D(w = 1) = "
+             + ", ".join(f"{at1[m]:.3g} (mu = {m})" for m in (0.2, 0.6, 0.85, 1.0))
+             + ("; mu = 1 is lower still" if at1[1.0] < at1[0.85] else "")),
+        _row("fig6_mu1_close", None,
+             f"{supported(close <= tol)}: D(w = 1) differs by {100 * close:.1f} % between "
+             f"mu = 1 and mu = 0.85 (close means within {100 * tol:.0f} %)"),
+        _row("fig6_equal_masses_w09", None,
+             f"{supported(at_low[1.0] < at_low[0.85])}: D(w = {w_low}) = {at_low[1.0]:.3g} "
+             f"(mu = 1) vs {at_low[0.85]:.3g} (mu = 0.85)"),
+    ]
+
+
+def time_rows(tr: xr.Dataset, omega_n: float, claims: dict, paper: dict) -> list[Reproduced]:
+    t = tr.t.values
+    period = 2 * np.pi / omega_n
+    nonlin = int(np.flatnonzero(tr.model_name.values == "nonlinear eqs. (8)-(10)")[0])
+    th = {case: tr[f"theta_{case}"].values[nonlin] for case in ("none", "single", "dual")}
+    t_at = claims["fig3_time"]
+    amp = peak_amplitude(t, th["none"], t_at, period)
+    exact = float(np.interp(t_at, t, tr.theta_none_exact_envelope.values))
+    t_paper = paper["fig3_theta_2s"] / exact * t_at
+    env = {case: _peaks_per_period(t, x, period) for case, x in th.items()}
+    half = len(env["none"]) // 2
+    grows = env["none"][-1] > 1.5 * env["none"][half]
+    late = {case: float(np.max(e[-max(1, len(e) // 10):])) for case, e in env.items()}
+    early = slice(0, max(2, len(env["none"]) // 20))
+    overshoot = {case: float(np.max(env[case][early] / env["none"][early])) for case in
+                 ("single", "dual")}
+    s1, s2 = (float(np.max(np.abs(tr[f"s{j}_dual"].values[nonlin][t > t[-1] / 2])))
+              for j in (1, 2))
+    lin_gap = float(np.max(np.abs(np.diff(tr.theta_dual.values, axis=0))))
+    return [
+        _row("fig3_theta_2s", amp,
+             f"undamped resonance from rest grows as Gamma0 t/(2 J omega_n) = {exact:.3g} rad at "
+             f"t = {t_at} s (integration: {amp:.3g} rad); the printed 0.03 rad is reached at "
+             f"t = {t_paper:.2f} s, so the stated model and Table 1 cannot give it at 2 s"),
+        _row("fig3_growing", None,
+             f"{supported(grows)}: envelope {env['none'][half]:.3g} rad at t = {t[-1] / 2:.2f} s, "
+             f"{env['none'][-1]:.3g} rad at t = {t[-1]:.2f} s (linear growth)"),
+        _row("fig4_dual_best", None,
+             f"{supported(late['dual'] < 0.5 * late['single'])} against the Den Hartog stand-in "
+             f"for ref. [8]: late amplitude {late['dual']:.3g} rad (Table 2 dual) vs "
+             f"{late['single']:.3g} rad (single set of the same mass), {late['none']:.3g} rad "
+             "without absorber; ref. [8]'s own absorber is not available"),
+        _row("fig4_ref8_overshoot", None,
+             f"{supported(overshoot['single'] > 1 and overshoot['dual'] <= 1)}: over the first "
+             f"{early.stop} periods the peak ratio to the bare rotor reaches "
+             f"{overshoot['single']:.3f} (single, Den Hartog) and {overshoot['dual']:.3f} (dual)"),
+        _row("fig7_absorber1_larger", None,
+             f"{supported(s1 > s2)}: late amplitudes {1e3 * s1:.3g} mm (set 1) and "
+             f"{1e3 * s2:.3g} mm (set 2); linear and nonlinear theta differ by at most "
+             f"{lin_gap:.2g} rad"),
+    ]
+
+
+def reproduce(ga: xr.Dataset, fr: xr.Dataset, mr: xr.Dataset, tr: xr.Dataset, *, J: float,
+              static: float, claims: dict, paper_values: dict) -> list[Reproduced]:
+    """All paper C rows.  ``static = Gamma0/k_t``; ``paper_values`` maps quantity -> value."""
+    omega_n = float(fr.omega_n)
+    paper = {"static": static, **paper_values}
+    return (frequency_rows(fr, mr, claims) + ga_rows(ga, omega_n, J, paper)
+            + time_rows(tr, omega_n, claims, paper))
+
+
+def table2_side_by_side(ga: xr.Dataset) -> list[dict]:
+    """Table 2 regenerated beside the GA optimum, with the bounds of section 4 and the objective."""
+    units = {"m": "kg", "k": "N/m", "c": "N s/m", "d": "m"}
+    rows = []
+    for i, name in enumerate(DUAL_NAMES):
+        lo, hi, t2 = (float(ga[v][i]) for v in ("lower_bound", "upper_bound", "x_table2"))
+        rows.append({"parameter": name, "unit": units[name[0]], "lower_bound": lo,
+                     "upper_bound": hi, "table2_paper": t2, "ga_this_work": float(ga.x_opt[i]),
+                     "table2_within_bounds": "yes" if lo <= t2 <= hi else "NO"})
+    rows.append({"parameter": "|Theta(omega_n)| by eq. (20)", "unit": "rad", "lower_bound": None,
+                 "upper_bound": None, "table2_paper": float(ga.theta_table2),
+                 "ga_this_work": float(ga.theta_opt), "table2_within_bounds": ""})
+    return rows

@@ -1,0 +1,122 @@
+"""Paper C's figures, drawn from the datasets only (no model is evaluated here).
+
+Each function takes the datasets it needs and ``paper``, the paper's stated values by quantity
+id (``data/paper_values.csv``), and returns a matplotlib figure.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.io.plotting import figure, paper_hline, paper_point, paper_vline
+
+NONLINEAR = 1  # index of "nonlinear eqs. (8)-(10)" on the model axis of the time responses
+CASES = {"none": "no absorber", "single": "single absorber, Den Hartog (stand-in for ref. [8])",
+         "dual": "dual absorber, Table 2"}
+COLORS = {"none": "C0", "single": "C1", "dual": "C2"}
+
+
+def fig3(tr, paper, t_at: float):
+    """Fig 3: rotor without absorber driven at omega_n; the paper's amplitude at ``t_at``."""
+    fig, ax = figure()
+    t = tr.t.values
+    ax.plot(t, tr.theta_none.values[NONLINEAR], lw=0.5, label="theta(t), eqs. (8)-(10)")
+    env = tr.theta_none_exact_envelope.values
+    ax.plot(t, env, "k:", lw=1.2, label="exact envelope Gamma0 t/(2 J omega_n)")
+    ax.plot(t, -env, "k:", lw=1.2)
+    paper_point(ax, t_at, paper["fig3_theta_2s"], f"{paper['fig3_theta_2s']} rad at t = {t_at:g} s")
+    ax.set(xlabel="time t (s)", ylabel="disk twist theta (rad)",
+           title="Fig 3: rotor without absorber at resonance, Gamma0 cos(omega_n t) from rest")
+    ax.legend(loc="upper left")
+    return fig
+
+
+def fig4(tr, paper):
+    """Fig 4: no absorber, Den Hartog single absorber, Table 2 dual absorber at resonance."""
+    fig, (ax1, ax2) = figure(2, 1, figsize=(7.0, 6.2), sharex=True)
+    t = tr.t.values
+    for case, label in CASES.items():
+        ax1.plot(t, tr[f"theta_{case}"].values[NONLINEAR], lw=0.5, color=COLORS[case], label=label)
+    for case in ("dual", "single"):
+        ax2.plot(t, tr[f"theta_{case}"].values[NONLINEAR], lw=0.5, color=COLORS[case],
+                 label=CASES[case])
+    ax1.set(ylabel="theta (rad)", title="Fig 4: torsional response at omega_n, eqs. (8)-(10)")
+    ax2.set(xlabel="time t (s)", ylabel="theta (rad)", title="zoom on the absorbers")
+    ax1.legend(loc="upper left")
+    ax2.legend(loc="upper right")
+    return fig
+
+
+def linearisation(tr, paper):
+    """Difference between the nonlinear (8)-(10) and the linear (14) responses."""
+    fig, ax = figure()
+    t = tr.t.values
+    for case, label in CASES.items():
+        gap = np.abs(np.diff(tr[f"theta_{case}"].values, axis=0)[0])
+        ax.semilogy(t[1:], np.maximum(gap[1:], 1e-18), lw=0.6, color=COLORS[case], label=label)
+    ax.set(xlabel="time t (s)", ylabel="|theta_nonlinear - theta_linear| (rad)",
+           title="Effect of linearisation: eqs. (8)-(10) against eq. (14)")
+    ax.legend(loc="lower right")
+    return fig
+
+
+def fig5(fr, paper):
+    """Fig 5: frequency response without absorber, Table 2 undamped and damped, GA optimum."""
+    fig, ax = figure(figsize=(7.0, 5.6))
+    w = fr.w.values
+    ax.semilogy(w, fr.D_none.values, "k", lw=1, label="no absorber")
+    ax.semilogy(w, fr.D_table2_undamped.values, lw=1, label="Table 2, zero damping")
+    ax.semilogy(w, fr.D_table2.values, lw=1.6, label="Table 2 (optimum of the paper)")
+    ax.semilogy(w, fr.D_table2_printed_det.values, ":", lw=1.2,
+                label="Table 2 with the printed det(A)")
+    ax.semilogy(w, fr.D_ga.values, lw=1.2, label="optimum found by the GA (this work)")
+    paper_vline(ax, paper["undamped_peak_low"], f"undamped peaks w = {paper['undamped_peak_low']}"
+                f" and {paper['undamped_peak_high']} (read off Fig 5)")
+    ax.axvline(paper["undamped_peak_high"], color="crimson", ls="--", lw=1.2)
+    paper_point(ax, 1.0, paper["theta_table2"] / float(fr.static_deflection),
+                f"Table 2 objective {paper['theta_table2']:g} rad")
+    ax.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
+           title="Fig 5: frequency response", ylim=(1e-2, 1e4))
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+    return fig
+
+
+def fig6(mr, paper, w_low: float):
+    """Fig 6: frequency response for the mass-ratio family; the paper's claim location ``w_low``."""
+    fig, ax = figure()
+    for mu in mr.mu.values:
+        best = np.isclose(mu, paper["mu_opt"])
+        ax.plot(mr.w.values, mr.D.sel(mu=mu).values, lw=2.0 if best else 1.0,
+                label=f"mu = {mu:g}" + (" (paper's optimum)" if best else ""))
+    paper_vline(ax, w_low, f"equal masses better at w = {w_low:g}")
+    ax.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
+           title="Fig 6: mass ratio m2/m1 (k2 = mu k1, rest as Table 2)")
+    ax.legend()
+    return fig
+
+
+def fig7(tr, paper):
+    """Fig 7: absorber displacements of the Table 2 dual absorber at resonance."""
+    fig, ax = figure()
+    t = tr.t.values
+    for j in (1, 2):
+        ax.plot(t, 1e3 * tr[f"s{j}_dual"].values[NONLINEAR], lw=0.5, label=f"absorber set {j}")
+    ax.set(xlabel="time t (s)", ylabel="absorber displacement (mm)",
+           title="Fig 7: absorber amplitudes at omega_n, Table 2, eqs. (8)-(10)")
+    ax.legend(loc="upper right")
+    return fig
+
+
+def ga_convergence(ga, paper):
+    """Best and mean objective per generation, with Table 2's value and the paper's."""
+    fig, ax = figure()
+    g = ga.generation.values
+    ax.semilogy(g, ga.best_objective.values, lw=1.6, label="best of generation")
+    ax.semilogy(g, ga.mean_objective.values, lw=1.0, label="population mean")
+    ax.axhline(float(ga.theta_table2), color="grey", ls="-.",
+               label="Table 2 evaluated with eq. (20)")
+    paper_hline(ax, paper["theta_ga"], f"objective {paper['theta_ga']:g} rad")
+    ax.set(xlabel="generation", ylabel="|Theta(omega_n)| (rad)",
+           title="Genetic algorithm: convergence of the objective")
+    ax.legend()
+    return fig

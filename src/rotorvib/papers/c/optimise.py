@@ -1,0 +1,37 @@
+"""Genetic-algorithm tuning of the dual absorber (paper C, section 4)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.methods.ga import GAResult, minimise
+from rotorvib.models.absorber.frequency_response import theta_eq20
+from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
+
+
+def design_bounds(bounds: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Lower and upper bounds in DUAL_NAMES order from ``{"m": [lo, hi], "k": ..., "c": ...,
+    "d": ...}`` (the paper gives one interval per kind, shared by both sets)."""
+    pairs = [bounds[name[0]] for name in DUAL_NAMES]
+    return np.array([p[0] for p in pairs], float), np.array([p[1] for p in pairs], float)
+
+
+def resonance_objective(rotor: Rotor):
+    """``x[..., 8] -> |Theta(omega_n)|`` (rad), eq. (20) with the correct determinant."""
+
+    def objective(x):
+        return np.abs(theta_eq20(rotor, x, rotor.omega_n))
+
+    return objective
+
+
+def violated_bounds(x, lower, upper) -> list[str]:
+    """Names of the design variables of ``x`` outside ``[lower, upper]``."""
+    return [name for name, v, lo, hi in zip(DUAL_NAMES, x, lower, upper) if not lo <= v <= hi]
+
+
+def tune_dual_absorber(rotor: Rotor, bounds: dict, *, pop_size: int, n_gen: int, seed: int,
+                       sbx_eta: float, pm_eta: float, progress=None) -> GAResult:
+    lower, upper = design_bounds(bounds)
+    return minimise(resonance_objective(rotor), lower, upper, pop_size=pop_size, n_gen=n_gen,
+                    seed=seed, sbx_eta=sbx_eta, pm_eta=pm_eta, progress=progress)

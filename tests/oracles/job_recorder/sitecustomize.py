@@ -1,0 +1,32 @@
+"""Test oracle: record what each Snakemake script job actually loaded.
+
+On the ``PYTHONPATH`` of a workflow test with ``ROTORVIB_JOB_RECORDS`` set, every Python process
+that ran a Snakemake script writes, when it exits, one JSON file: the rule, the job's input and
+output files and the ``rotorvib`` modules in ``sys.modules``.  This is the independent record
+against which the derived code fingerprints are tested: it comes from the interpreter, not from
+reading imports.
+"""
+
+import atexit
+import hashlib
+import json
+import os
+import sys
+from pathlib import Path
+
+
+def _record():
+    job = getattr(sys.modules.get("__main__"), "snakemake", None)
+    if job is None:
+        return
+    outputs = sorted(str(f) for f in job.output)
+    record = {"rule": job.rule, "output": outputs, "input": sorted(str(f) for f in job.input),
+              "modules": sorted(m for m in sys.modules if m.split(".")[0] == "rotorvib")}
+    key = hashlib.sha256("\n".join(outputs).encode()).hexdigest()[:16]
+    target = Path(os.environ["ROTORVIB_JOB_RECORDS"]) / f"{job.rule}-{key}.json"
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(json.dumps(record, indent=1))
+
+
+if os.environ.get("ROTORVIB_JOB_RECORDS"):
+    atexit.register(_record)

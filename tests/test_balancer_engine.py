@@ -1,0 +1,171 @@
+"""The ball-balancer engine against scipy, against paper B's printed polar equations, across
+kinematic conventions and across the fixed and rotating frames."""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from rotorvib.models.balancer import engine
+from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
+                                                 fixed_parameters, fixed_state, rotating_parameters)
+from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
+from rotorvib.methods.integrate import IntegrationError
+from rotorvib.models.balancer.simulate import BalanceCriterion, check_batch, run, run_batch
+
+R_THR, F_THR = 1e-4, 1.0
+
+
+def paper_b(m_bar=0.01, eps_bar=0.012, beta=1.0, zeta=0.01):
+    return Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=m_bar, eps_bar=eps_bar, zeta=zeta,
+                                 beta=beta)
+
+
+def ic(deg=(40.0, 45.0), r0=1e-3):
+    return fixed_state(2, r0=r0, theta0=0.0, phi0=np.radians(deg))
+
+
+def scipy_reference(form, p, y0, t):
+    def f(tt, y):
+        dy = np.empty_like(y)
+        engine.rhs(form, tt, y, p, dy)
+        return dy
+    sol = solve_ivp(f, (t[0], t[-1]), y0, method="DOP853", rtol=1e-12, atol=1e-15, t_eval=t)
+    assert sol.success
+    return sol.y.T
+
+
+@pytest.mark.parametrize("case", [
+    dict(b=paper_b(), prof=SpeedProfile(200.0, "runup", 0.5, "printed"), deg=(40, 45), t=3.0),
+    dict(b=paper_b(), prof=SpeedProfile(200.0, "runup", 0.5, "consistent"), deg=(260, 265), t=3.0),
+    dict(b=paper_b(beta=0.2, m_bar=0.006), prof=SpeedProfile(230.0, "constant"), deg=(110, 115),
+         t=2.0),
+    dict(b=paper_b(beta=0.0), prof=SpeedProfile(150.0, "constant"), deg=(45, 90), t=1.0),
+])
+def test_engine_matches_scipy_dop853(case):
+    p = fixed_parameters(case["b"], case["prof"])
+    y0 = ic(case["deg"])
+    traj = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, case["t"], 1e-3), rtol=1e-11, atol=1e-14, store=True)
+    ref = scipy_reference(engine.FIXED, p, y0, traj.t)
+    scale = np.max(np.abs(ref), axis=0)
+    assert np.max(np.abs(traj.y - ref) / scale) < 1e-7
+
+
+def test_full_runup_balance_time_matches_scipy():
+    """Paper B's run-up, 20 s: balance time from the engine's default tolerance and from
+    scipy's DOP853 at rtol 1e-12 agree to 1e-3 s."""
+    b, prof = paper_b(), SpeedProfile(200.0, "runup", 0.5, "printed")
+    p, y0 = fixed_parameters(b, prof), ic((40, 45))
+    res = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, 20.0, 1e-3))
+    t = np.arange(20001) * 1e-3
+    ref = scipy_reference(engine.FIXED, p, y0, t)
+    r = np.hypot(ref[:, 0], ref[:, 1])
+    last_above = np.flatnonzero(r >= R_THR)[-1]
+    t_ref = t[last_above] + (r[last_above] - R_THR) / (r[last_above] - r[last_above + 1]) * 1e-3
+    assert not res.censored
+    assert res.balance_time == pytest.approx(t_ref, abs=1e-3)
+    assert 1.0 < res.balance_time < 20.0
+
+
+def test_cartesian_printed_form_equals_paper_b_polar_equations():
+    """Eqs (7)-(9) integrated literally in polar coordinates (r > 0 throughout) coincide with
+    the regular Cartesian form under the printed kinematics, during the run-up."""
+    b, prof = paper_b(), SpeedProfile(200.0, "runup", 0.5, "printed")
+    y0 = ic((40, 45))
+    t = np.linspace(0.0, 0.4, 401)
+    polar0 = np.concatenate(([1e-3, 0.0], y0[2:4], np.zeros(4)))
+    sol = solve_ivp(rhs_polar_printed, (0, 0.4), polar0, method="DOP853", rtol=1e-12,
+                    atol=1e-15, t_eval=t, args=(b, prof))
+    assert sol.success and np.all(sol.y[0] > 0)
+    traj = run(engine.FIXED, fixed_parameters(b, prof), y0, BalanceCriterion(R_THR, F_THR, 0.4, 1e-3), rtol=1e-12, atol=1e-15, store=True)
+    ref = polar_to_fixed(sol.y.T, 2)
+    scale = np.max(np.abs(ref), axis=0)
+    assert np.max(np.abs(traj.y - ref) / scale) < 1e-7
+
+
+def test_printed_and_consistent_kinematics_coincide_at_constant_speed():
+    b = paper_b()
+    y0 = ic((110, 115))
+    out = [run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant", kinematics=k)),
+               y0, BalanceCriterion(R_THR, F_THR, 2.0, 1e-3), store=True).y
+           for k in ("printed", "consistent")]
+    np.testing.assert_array_equal(out[0], out[1])
+
+
+def test_printed_and_consistent_kinematics_differ_during_runup():
+    b = paper_b()
+    res = [run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "runup", kinematics=k)),
+               ic(), BalanceCriterion(R_THR, F_THR, 20.0, 1e-3))
+           for k in ("printed", "consistent")]
+    assert abs(res[0].balance_time - res[1].balance_time) > 1e-3
+
+
+@pytest.mark.parametrize("profile", ["constant", "runup"])
+def test_rotating_frame_equals_fixed_frame(profile):
+    """Digest A's dimensionless rotating-frame form reproduces the fixed-frame trajectory through
+    u + i v = (x + i y) exp(-i Phi) / R, tau = w_n t (consistent kinematics)."""
+    b = paper_b(beta=0.5)
+    prof = SpeedProfile(200.0, profile, 0.5, "consistent")
+    d, wn = b.dimensionless(), b.omega_n_total
+    y0 = ic((40, 45))
+    fixed = run(engine.FIXED, fixed_parameters(b, prof), y0, BalanceCriterion(R_THR, F_THR, 1.0, 1e-3), rtol=1e-12, atol=1e-15, store=True)
+    rot_prof = SpeedProfile(prof.omega / wn, profile, prof.t_ramp * wn, "consistent")
+    Om = rot_prof.speed(0.0)[0][0]
+    # at rest in the fixed frame: u' + i v' = -i Omega (u + i v)
+    y0r = np.concatenate((y0[:2] / b.R, y0[2:4], [Om * y0[1] / b.R, -Om * y0[0] / b.R], y0[6:]))
+    rot = run(engine.ROTATING, rotating_parameters(d, rot_prof), y0r, BalanceCriterion(R_THR / b.R, F_THR, 1.0 * wn, 1e-3 * wn), rtol=1e-12,
+              atol=1e-15, store=True)
+    phase = np.array(prof.speed(fixed.t)[3])
+    z = (rot.y[:, 0] + 1j * rot.y[:, 1]) * b.R * np.exp(1j * phase)
+    scale = np.max(np.abs(fixed.y[:, 0]))
+    assert np.max(np.abs(z.real - fixed.y[:, 0])) < 1e-7 * scale
+    assert np.max(np.abs(z.imag - fixed.y[:, 1])) < 1e-7 * scale
+    np.testing.assert_allclose(rot.y[:, 2:4], fixed.y[:, 2:4], atol=1e-7)
+
+
+def test_balanced_angle_and_existence_bound():
+    b = paper_b(m_bar=0.01, eps_bar=0.012)
+    assert np.cos(b.balanced_angle()) == pytest.approx(-0.012 / (2 * 0.01))
+    assert b.can_balance() and not paper_b(m_bar=0.0059, eps_bar=0.012).can_balance()
+    assert Dimensionless(0.01, 1.0, 0.05, 0.5).balanced_angle() == pytest.approx(2 * np.pi / 3)
+    with pytest.raises(ValueError, match="existence bound"):
+        paper_b(m_bar=0.005, eps_bar=0.012).balanced_angle()
+
+
+def test_long_run_settles_on_the_balanced_angle():
+    b = paper_b(beta=0.5)
+    traj = run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant")), ic((100, 140)), BalanceCriterion(R_THR, F_THR, 30.0, 1e-2), store=True)
+    phi = np.mod(traj.y[-1, 2:4] + np.pi, 2 * np.pi) - np.pi
+    np.testing.assert_allclose(np.sort(phi), [-b.balanced_angle(), b.balanced_angle()], atol=1e-4)
+    assert traj.r[-1] < 1e-7
+    assert not traj.result.censored
+
+
+def test_unbalanced_run_is_censored_not_a_number():
+    b = paper_b(beta=0.0)       # beta = 0: the balanced state is unstable (paper B, Fig 6)
+    res = run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant")), ic((45, 90)), BalanceCriterion(R_THR, F_THR, 5.0, 1e-3))
+    assert res.censored and np.isnan(res.balance_time)
+
+
+def test_failures_are_reported():
+    b = paper_b()
+    p = fixed_parameters(b, SpeedProfile(200.0, "constant"))
+    p_bad = p.copy()
+    p_bad[0] = np.nan
+    with pytest.raises(IntegrationError):
+        run(engine.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
+    metrics = run_batch(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]), BalanceCriterion(R_THR, F_THR, 0.5, 1e-3), progress=False)
+    assert metrics[0, 0] == engine.OK and metrics[1, 0] != engine.OK
+    with pytest.raises(IntegrationError, match="1 of 2"):
+        check_batch(metrics)
+
+
+def test_batch_equals_single_runs():
+    b = [paper_b(beta=x) for x in (0.2, 0.6, 1.0)]
+    P = np.stack([fixed_parameters(bi, SpeedProfile(200.0, "runup", kinematics="printed"))
+                  for bi in b])
+    Y = np.stack([ic(d) for d in ((40, 45), (110, 115), (260, 265))])
+    batch = run_batch(engine.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 8.0, 1e-3), progress=False, chunk=2)
+    for i in range(3):
+        single = run(engine.FIXED, P[i], Y[i], BalanceCriterion(R_THR, F_THR, 8.0, 1e-3))
+        assert batch[i, 2] == single.balance_time or (np.isnan(batch[i, 2]) and single.censored)
+        assert batch[i, 6] == single.force_max

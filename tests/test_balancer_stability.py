@@ -1,0 +1,70 @@
+"""Stability of the balanced state: symbolic linearisation against the compiled right-hand
+side, characteristic-polynomial coefficients, and the known limits."""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from rotorvib.models.balancer import engine, stability
+from rotorvib.models.balancer.parameters import Dimensionless, SpeedProfile, rotating_parameters
+
+CASE = dict(mu=0.01, rho=1.0, zeta=0.05, beta=0.5, omega=2.0)
+
+
+def finite_difference_jacobian(mu, rho, zeta, beta, omega, h=1e-7):
+    d = Dimensionless(mu, rho, zeta, beta)
+    p = rotating_parameters(d, SpeedProfile(omega, "constant"))
+    a = d.balanced_angle()
+    y = np.array([0.0, 0.0, a, -a, 0.0, 0.0, 0.0, 0.0])
+    J = np.empty((8, 8))
+    for j in range(8):
+        plus, minus, fp, fm = y.copy(), y.copy(), np.empty(8), np.empty(8)
+        plus[j] += h
+        minus[j] -= h
+        engine.rhs_rotating(0.0, plus, p, fp)
+        engine.rhs_rotating(0.0, minus, p, fm)
+        J[:, j] = (fp - fm) / (2 * h)
+    return J
+
+
+@pytest.mark.parametrize("case", [CASE, dict(mu=0.05, rho=0.7, zeta=0.2, beta=3.0, omega=1.3)])
+def test_symbolic_linearisation_matches_compiled_rhs(case):
+    J = stability.jacobian(**case)
+    np.testing.assert_allclose(J, finite_difference_jacobian(**case), atol=1e-6)
+
+
+def test_constant_term_changes_sign_at_rho_one_half():
+    c0 = sp.factor(stability.characteristic_polynomial().coeff_monomial(1))
+    assert sp.simplify(c0 - stability.OMEGA**8 * stability.MU**4 * (4 * stability.RHO**2 - 1)
+                       / (4 * stability.RHO**4)) == 0
+    values = [float(c0.subs({stability.MU: 0.01, stability.OMEGA: 2, stability.RHO: r}))
+              for r in (0.49, 0.51)]
+    assert values[0] < 0 < values[1]
+
+
+def test_first_order_coefficient_changes_sign_at_omega_one():
+    c1 = stability.characteristic_polynomial().coeff_monomial(stability.LAMBDA)
+    W, B, MU = stability.OMEGA, stability.BETA, stability.MU
+    assert sp.simplify(c1 - 2 * B * MU**3 * W**4 * (W**2 - 1)) == 0
+
+
+def test_characteristic_polynomial_equals_numeric_eigenvalues():
+    poly = stability.characteristic_polynomial()
+    subs = {stability.MU: CASE["mu"], stability.RHO: CASE["rho"], stability.ZETA: CASE["zeta"],
+            stability.BETA: CASE["beta"], stability.OMEGA: CASE["omega"]}
+    coeffs = [complex(c.subs(subs)) for c in poly.all_coeffs()]
+    roots = np.roots(coeffs)
+    eig = stability.eigenvalues(**CASE)
+    distance = np.abs(roots[:, None] - eig[None, :])
+    assert np.max(distance.min(axis=1)) < 1e-8 and np.max(distance.min(axis=0)) < 1e-8
+
+
+def test_known_limits():
+    assert stability.max_real_part(**CASE) < 0                              # balanced, stable
+    assert stability.max_real_part(**{**CASE, "omega": 0.8}) > 0           # below critical speed
+    assert stability.max_real_part(**{**CASE, "beta": 0.0}) > -1e-12       # no ball damping
+    # vectorised over a grid: one eigen-problem per point
+    beta, omega = np.meshgrid(np.linspace(0.1, 2, 7), np.linspace(0.5, 4, 9))
+    grid = stability.max_real_part(0.01, 1.0, 0.05, beta, omega)
+    assert grid.shape == (9, 7)
+    assert grid[0, 0] == pytest.approx(stability.max_real_part(0.01, 1.0, 0.05, 0.1, 0.5))

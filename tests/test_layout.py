@@ -1,0 +1,44 @@
+"""The package layout holds: models and methods know no paper, no paper imports another, the
+library never imports Snakemake, and modules stay small."""
+
+from pathlib import Path
+
+import pytest
+
+from rotorvib.io.fingerprint import imported_names
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+MODULES = {".".join(p.relative_to(SRC).with_suffix("").parts).removesuffix(".__init__"): p
+           for p in sorted((SRC / "rotorvib").rglob("*.py"))}
+
+#: layer -> layers it must not import
+FORBIDDEN = {
+    "rotorvib.io": ("rotorvib.models", "rotorvib.methods", "rotorvib.papers",
+                    "rotorvib.comparison"),
+    "rotorvib.methods": ("rotorvib.models", "rotorvib.papers", "rotorvib.comparison"),
+    "rotorvib.models": ("rotorvib.papers", "rotorvib.comparison"),
+}
+
+
+def imports_of(name):
+    path = MODULES[name]
+    return imported_names(path.read_text(), name, path.name == "__init__.py")
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_module_respects_the_layers(name):
+    imported = imports_of(name)
+    assert not any(i.split(".")[0] == "snakemake" for i in imported)
+    for layer, forbidden in FORBIDDEN.items():
+        if name.startswith(layer):
+            assert not [i for i in imported if i.startswith(forbidden)], name
+    if name.startswith("rotorvib.papers."):
+        paper = name.split(".")[2]
+        others = [i for i in imported if i.startswith("rotorvib.papers.")
+                  and i.split(".")[2] != paper]
+        assert not others, f"{name} imports another paper: {others}"
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_modules_stay_small(name):
+    assert len(MODULES[name].read_text().splitlines()) <= 430

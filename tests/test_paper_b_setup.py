@@ -1,0 +1,101 @@
+"""Paper B's run setup: one balance criterion from the config, every study and the GA objective
+set up by it, balance-time studies generic over the varied parameter."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from rotorvib.models.balancer import engine
+from rotorvib.models.balancer.simulate import BalanceCriterion, metric, simulate
+from rotorvib.papers.b.optimise import balance_time_objective, tune_balancer
+from rotorvib.papers.b.setup import RUN_PARAMETERS, Setup, study_problem
+from rotorvib.papers.b.studies import balance_study_dataset
+
+IC1 = (40.0, 45.0)
+
+
+@pytest.fixture(scope="module")
+def setup(config):
+    """Paper B's setup from the configuration, with 8 s runs (every run below balances)."""
+    b = config["paper_b"]
+    sections = {key: b[key] for key in ("machine", "initial_state", "speed", "balance")}
+    s = Setup.from_config(**sections)
+    return dataclasses.replace(s, criterion=dataclasses.replace(s.criterion, t_end=8.0))
+
+
+def test_criterion_force_threshold_is_the_support_force_at_the_radius_threshold(config):
+    b = config["paper_b"]
+    c = BalanceCriterion.from_config(b["balance"], b["machine"]["k"])
+    assert c.f_threshold == b["machine"]["k"] * b["balance"]["r_threshold"]
+    assert c.times[-1] == pytest.approx(b["balance"]["t_end"])
+    assert c.n_samples == round(b["balance"]["t_end"] / b["balance"]["sample_dt"]) + 1
+
+
+def test_run_parameters_match_the_schema(schema):
+    assert set(schema["$defs"]["run_parameter"]["enum"]) == set(RUN_PARAMETERS)
+
+
+@pytest.mark.parametrize("study, problem", [
+    ({"axis": "beta", "fixed": {"mass": 0.01, "eps_bar": 0.01}}, None),
+    ({"axis": "beta", "each": {"eps_bar": [0.01]}, "fixed": {"mass": 0.01}}, None),
+    ({"axis": "beta", "fixed": {"mass": 0.01}}, "['eps_bar'] missing"),
+    ({"axis": "beta", "fixed": {"beta": 1.0, "mass": 0.01, "eps_bar": 0.01}},
+     "['beta'] given more than once"),
+])
+def test_study_problems_name_the_parameter(study, problem):
+    found = study_problem(study)
+    assert found == problem or (problem is not None and problem in found)
+
+
+def test_study_runs_are_the_public_simulate_runs(setup):
+    """A balance-time study over eps_bar gives, point by point, the result of the public
+    ``simulate`` on the same balancer (an independent route through the API)."""
+    eps = [0.004, 0.012]
+    ds = balance_study_dataset(setup, kinematics=["printed"], ics={"IC1": IC1}, axis="eps_bar",
+                               values=eps, fixed={"beta": 1.0, "mass": 0.01}, where="test")
+    assert ds.balance_time.dims == ("kinematics", "ic", "eps_bar")
+    assert ds.eps_bar.attrs["long_name"] == RUN_PARAMETERS["eps_bar"][0]
+    c = setup.criterion
+    for j, e in enumerate(eps):
+        b = setup.balancer(mass=0.01, eps_bar=e, beta=1.0)
+        res = simulate(b, setup.profile("printed"), np.radians(IC1), c.t_end, r0=setup.r0,
+                       theta0=setup.theta0, sample_dt=c.sample_dt, r_threshold=c.r_threshold)
+        assert float(ds.balance_time[0, 0, j]) == res.balance_time
+        assert float(ds.force_max[0, 0, j]) == res.force_max
+    assert float(ds.balance_time[0, 0, 1]) != float(ds.balance_time[0, 0, 0])  # eps_bar varied
+
+
+def test_ga_objective_scores_the_study_runs(setup):
+    X = np.array([[0.2, 0.006], [1.0, 0.02]])
+    objective = balance_time_objective(setup, kinematics="printed", eps_bar=0.012,
+                                       phi0_deg=IC1, censored_penalty=2.0)
+    runs = setup.runs([setup.run_inputs(mass=m, eps_bar=0.012, beta=beta, phi0_deg=IC1,
+                                        kinematics="printed") for beta, m in X])
+    balanced = metric(runs, "balanced") == 1
+    assert list(balanced) == [True, False]  # the heavy ball is not balanced within 8 s
+    np.testing.assert_array_equal(objective(X), [metric(runs, "balance_time")[0],
+                                                 2.0 * setup.criterion.t_end])
+
+
+def test_ga_objective_runs_any_number_of_balls(setup):
+    """Three balls of mass m balance a disk as two would, faster or slower, but the objective
+    sets the runs up through the same Setup: state size 2 + 3 + 2 + 3 = 10."""
+    three = dataclasses.replace(setup, n=3)
+    p, y0 = three.run_inputs(mass=0.01, eps_bar=0.012, beta=1.0, phi0_deg=(40.0, 45.0, 200.0),
+                             kinematics="printed")
+    assert y0.shape == (10,) and p[engine.P_FIXED.index("n")] == 3
+    objective = balance_time_objective(three, kinematics="printed", eps_bar=0.012,
+                                       phi0_deg=(40.0, 45.0, 200.0), censored_penalty=2.0)
+    t = objective(np.array([[1.0, 0.01]]))
+    assert 0 < t[0] < three.criterion.t_end
+
+
+def test_balancer_ga_is_deterministic_for_a_seed(setup):
+    objective = balance_time_objective(setup, kinematics="printed", eps_bar=0.012,
+                                       phi0_deg=IC1, censored_penalty=2.0)
+    a, b = (tune_balancer(objective, (0.1, 1.0), (0.006, 0.02), pop_size=6, n_gen=3, seed=4)
+            for _ in range(2))
+    np.testing.assert_array_equal(a.x, b.x)
+    np.testing.assert_array_equal(a.history["best_f"], b.history["best_f"])
+    assert 0.1 <= a.x[0] <= 1.0 and 0.006 <= a.x[1] <= 0.02

@@ -1,0 +1,21 @@
+"""Rule b_balance_study: balance time against one run parameter (config paper_b.balance_studies),
+for every kinematics and initial condition."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.papers.b.setup import Setup
+from rotorvib.papers.b.studies import balance_study_dataset
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+use_threads(snakemake.threads)
+p = snakemake.params
+study = p.study
+values = np.linspace(study["range"]["min"], study["range"]["max"], study["range"]["n"])
+ds = balance_study_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, ics=p.ics,
+                           axis=study["axis"], values=values, each=study.get("each"),
+                           fixed=study["fixed"], where=study["where"])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
