@@ -47,8 +47,17 @@ def test_undamped_absorber_cancels_the_disk_at_its_own_frequency(rotor, table2):
     assert 4 * sets[0].k * sets[0].d * q[1].real == pytest.approx(-rotor.Gamma0, rel=1e-9)
 
 
-def test_mass_ratio_family_reproduces_table2_at_085(table2):
-    assert mass_ratio_family(table2, 0.85) == pytest.approx(table2)
+@pytest.mark.parametrize("construction", ["tuned", "mass_only"])
+def test_mass_ratio_family_reproduces_table2_at_085(table2, construction):
+    assert mass_ratio_family(table2, 0.85, construction) == pytest.approx(table2)
+
+
+def test_mass_ratio_constructions_differ_only_in_the_second_spring(table2):
+    tuned, mass_only = (mass_ratio_family(table2, 0.5, c) for c in ("tuned", "mass_only"))
+    assert tuned[0] == mass_only[0] and tuned[1].m == mass_only[1].m == 0.5 * table2[0].m
+    assert tuned[1].k == 0.5 * table2[0].k and mass_only[1].k == table2[1].k
+    with pytest.raises(ValueError, match="unknown construction"):
+        mass_ratio_family(table2, 0.5, "other")
 
 
 def test_matrices_of_eq14(rotor, table2):

@@ -1,6 +1,7 @@
 import pytest
 
-from rotorvib.comparison import Reproduced, build_table, verdict
+from rotorvib.comparison import (Reproduced, build_table, claim_verdict, merge_variants,
+                                 read_reproduced, verdict, write_reproduced)
 
 
 @pytest.mark.parametrize("paper, reproduced, rel, word", [
@@ -16,25 +17,70 @@ def test_verdict_thresholds(paper, reproduced, rel, word):
     assert got_word == word
 
 
-def test_qualitative_and_nonfinite():
-    assert verdict(None, None) == (None, "QUALITATIVE")
+def test_values_the_paper_does_not_print_are_expected_not_matched():
+    assert verdict(2.0, 2.01, source="theory")[1] == "EXPECTED"
+    assert verdict(120.0, 110.0, source="chosen")[1] == "UNEXPECTED"
+    assert verdict(2.0, 2.01, source="printed")[1] == "MATCH"
+
+
+def test_a_paper_contradicting_itself_is_paper_inconsistent():
+    """Text says 32 %, the paper's own table implies 55.2 %, the reproduction gives 55.0 %."""
+    assert verdict(32.0, 55.0, implied=55.2)[1] == "PAPER-INCONSISTENT"
+    # the reproduction agrees with neither: an ordinary MAJOR
+    assert verdict(32.0, 80.0, implied=55.2)[1] == "MAJOR"
+    # the two printed numbers agree: the implied value changes nothing
+    assert verdict(55.0, 55.1, implied=55.2)[1] == "MATCH"
+
+
+def test_claim_verdicts_from_variants():
+    assert claim_verdict((("printed", True), ("consistent", True))) == "SUPPORTED"
+    assert claim_verdict((("printed", False), ("consistent", False))) == "NOT SUPPORTED"
+    assert claim_verdict((("printed", True), ("consistent", False))) == "DEPENDS"
+    assert claim_verdict((("printed", True), ("consistent", None))) == "DEPENDS"
+    assert claim_verdict((("", None),)) == "UNDETERMINED"
     with pytest.raises(ValueError):
-        verdict(1.0, float("nan"))
+        claim_verdict(())
+
+
+def test_a_claim_evaluated_under_two_variants_that_disagree_depends():
+    rows = merge_variants({
+        "printed": [Reproduced.claim("B", "claim", True, "0.1 s"), Reproduced.of("B", "q", 1, "x")],
+        "consistent": [Reproduced.claim("B", "claim", False, "never balances"),
+                       Reproduced.of("B", "q", 2, "x")]})
+    table = build_table([{"paper": "B", "item": "F", "quantity": "claim", "unit": "",
+                          "value": None, "source": "printed"},
+                         {"paper": "B", "item": "F", "quantity": "q", "unit": "s", "value": 1.0,
+                          "source": "printed"}], rows)
+    assert table[0]["verdict"] == "DEPENDS"
+    assert table[0]["explanation"].startswith("holds under printed; not under consistent: ")
+    assert "never balances" in table[0]["explanation"]
+    assert table[1]["verdict"] == "MATCH" and "consistent: 2" in table[1]["explanation"]
+
+
+def test_reproduced_rows_round_trip(tmp_path):
+    rows = [Reproduced.claim("B", "c", {"printed": True, "consistent": None}, "why, and how"),
+            Reproduced.of("B", "q", 55.0, "x", implied=55.2), Reproduced.claim("A", "d", False, "")]
+    write_reproduced(rows, tmp_path / "r.csv")
+    assert read_reproduced(tmp_path / "r.csv") == rows
 
 
 def _values():
-    return [{"paper": "C", "item": "T2", "quantity": "q", "unit": "kg", "value": 1.0},
-            {"paper": "C", "item": "F5", "quantity": "claim", "unit": "", "value": None}]
+    return [{"paper": "C", "item": "T2", "quantity": "q", "unit": "kg", "value": 1.0,
+             "source": "printed"},
+            {"paper": "C", "item": "F5", "quantity": "claim", "unit": "", "value": None,
+             "source": "printed"}]
 
 
 def test_table_joins_and_requires_explanations():
-    rows = build_table(_values(), [Reproduced("C", "q", 1.005, ""),
-                                   Reproduced("C", "claim", None, "supported: because")])
-    assert [r["verdict"] for r in rows] == ["MATCH", "QUALITATIVE"]
+    rows = build_table(_values(), [Reproduced.of("C", "q", 1.005, ""),
+                                   Reproduced.claim("C", "claim", True, "because")])
+    assert [r["verdict"] for r in rows] == ["MATCH", "SUPPORTED"]
     with pytest.raises(ValueError, match="no explanation"):
-        build_table(_values(), [Reproduced("C", "q", 2.0, ""), Reproduced("C", "claim", None, "x")])
+        build_table(_values(), [Reproduced.of("C", "q", 2.0, ""),
+                                Reproduced.claim("C", "claim", True, "x")])
     with pytest.raises(ValueError, match="no reproduced value"):
-        build_table(_values(), [Reproduced("C", "q", 1.0, "")])
+        build_table(_values(), [Reproduced.of("C", "q", 1.0, "")])
     with pytest.raises(ValueError, match="missing from the paper-values file"):
-        build_table(_values(), [Reproduced("C", "q", 1.0, ""), Reproduced("C", "claim", None, "x"),
-                                Reproduced("C", "other", 1.0, "x")])
+        build_table(_values(), [Reproduced.of("C", "q", 1.0, ""),
+                                Reproduced.claim("C", "claim", True, "x"),
+                                Reproduced.of("C", "other", 1.0, "x")])

@@ -1,9 +1,18 @@
 """Side-by-side comparison of the papers' stated values with the reproduced ones.
 
-Every value a paper states lives in ``data/paper_values.csv``.  Each paper's pipeline writes the
-reproduced values (``paper, quantity, reproduced, explanation``); this module joins the two and
-assigns a verdict: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %), or QUALITATIVE
-for claims without a number, whose explanation says whether the data support the claim.
+Every value a paper states lives in ``data/paper_values.csv`` with its ``source``: ``printed``
+(the paper prints it), ``chosen`` (the paper prints none; the value is the reproduction's choice)
+or ``theory`` (a value theory predicts, e.g. an error order).  Each paper's pipeline writes the
+reproduced values; this module joins the two and assigns a verdict:
+
+* a printed number: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %), or
+  PAPER-INCONSISTENT when the paper's own other numbers imply a value (``implied``) that differs
+  from the printed one by more than 10 % and the reproduction agrees with the implied one within
+  10 % (the paper contradicts itself; both numbers are quoted);
+* a chosen or theoretical value: EXPECTED (within 1 %) or UNEXPECTED, counted apart;
+* a claim without a number: SUPPORTED, NOT SUPPORTED or DEPENDS from whether it holds under each
+  variant it was evaluated under (kinematics, constructions); DEPENDS names the variants under
+  which it holds.  UNDETERMINED when no variant decides it.
 """
 
 from __future__ import annotations
@@ -15,43 +24,118 @@ from pathlib import Path
 
 from rotorvib.io.tables import write_table
 
-COLUMNS = ("paper", "item", "quantity", "unit", "paper_value", "reproduced", "rel_error",
-           "verdict", "explanation")
+COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reproduced",
+           "rel_error", "verdict", "explanation")
+SOURCES = ("printed", "chosen", "theory")
 MATCH_TOL = 0.01
 MINOR_TOL = 0.10
+NUMERIC_VERDICTS = ("MATCH", "MINOR", "MAJOR", "PAPER-INCONSISTENT")
+EXPECTATION_VERDICTS = ("EXPECTED", "UNEXPECTED")
+CLAIM_VERDICTS = ("SUPPORTED", "NOT SUPPORTED", "DEPENDS", "UNDETERMINED")
+_HOLDS_TEXT = {True: "yes", False: "no", None: "undetermined"}
 
 
 @dataclass(frozen=True)
 class Reproduced:
-    """One reproduced quantity, as written by a paper's comparison-values script."""
+    """One reproduced quantity, as written by a paper's comparison-values script.
+
+    ``holds`` (claims only) pairs each variant the claim was evaluated under with whether it
+    holds there (None: undetermined); ``implied`` is the value the paper's own other numbers
+    imply, when the paper states the quantity twice."""
 
     paper: str
     quantity: str
     reproduced: float | None
     explanation: str
+    holds: tuple[tuple[str, bool | None], ...] = ()
+    implied: float | None = None
 
     @classmethod
-    def of(cls, paper: str, quantity: str, value, explanation: str) -> "Reproduced":
-        """A row with ``value`` as float (None for a qualitative claim)."""
-        return cls(paper, quantity, None if value is None else float(value), explanation)
+    def of(cls, paper: str, quantity: str, value, explanation: str,
+           implied: float | None = None) -> "Reproduced":
+        """A numeric row with ``value`` as float."""
+        return cls(paper, quantity, float(value), explanation,
+                   implied=None if implied is None else float(implied))
+
+    @classmethod
+    def claim(cls, paper: str, quantity: str, holds, explanation: str) -> "Reproduced":
+        """A claim row; ``holds`` is a bool (or None) or a mapping variant -> bool/None."""
+        pairs = tuple(holds.items()) if isinstance(holds, dict) else (("", holds),)
+        return cls(paper, quantity, None, explanation,
+                   holds=tuple((str(k), None if v is None else bool(v)) for k, v in pairs))
 
 
-def supported(ok: bool) -> str:
-    """The opening word of a qualitative row's explanation."""
-    return "supported" if ok else "not supported"
+def relative_error(reference: float, value: float) -> float:
+    """``|value - reference| / |reference|`` (``|value|`` for a zero reference)."""
+    return abs(value) if reference == 0.0 else abs(value - reference) / abs(reference)
 
 
-def verdict(paper_value: float | None, reproduced: float | None) -> tuple[float | None, str]:
-    """Return ``(relative error, verdict)``; ``paper_value=None`` marks a qualitative claim."""
+def claim_verdict(holds) -> str:
+    """SUPPORTED / NOT SUPPORTED when every variant agrees, DEPENDS when they disagree,
+    UNDETERMINED when none decides."""
+    if not holds:
+        raise ValueError("a claim needs at least one evaluated variant")
+    known = [h for _, h in holds if h is not None]
+    if not known:
+        return "UNDETERMINED"
+    if len(known) == len(holds) and all(known):
+        return "SUPPORTED"
+    if len(known) == len(holds) and not any(known):
+        return "NOT SUPPORTED"
+    return "DEPENDS"
+
+
+def verdict(paper_value: float | None, reproduced: float | None, *, source: str = "printed",
+            holds=(), implied: float | None = None) -> tuple[float | None, str]:
+    """Return ``(relative error, verdict)`` (module docstring); ``paper_value=None`` marks a
+    claim, judged by ``holds``."""
     if paper_value is None:
-        return None, "QUALITATIVE"
+        return None, claim_verdict(holds)
     if reproduced is None or not math.isfinite(reproduced):
         raise ValueError("a quantitative paper value needs a finite reproduced value")
-    if paper_value == 0.0:
-        rel = abs(reproduced)
-    else:
-        rel = abs(reproduced - paper_value) / abs(paper_value)
+    rel = relative_error(paper_value, reproduced)
+    if source != "printed":
+        return rel, "EXPECTED" if rel <= MATCH_TOL else "UNEXPECTED"
+    if (implied is not None and relative_error(implied, paper_value) > MINOR_TOL
+            and relative_error(implied, reproduced) <= MINOR_TOL):
+        return rel, "PAPER-INCONSISTENT"
     return rel, "MATCH" if rel <= MATCH_TOL else "MINOR" if rel <= MINOR_TOL else "MAJOR"
+
+
+def describe_holds(holds) -> str:
+    """``"holds under printed; not under consistent"`` for a claim evaluated under variants."""
+    named = [(k, h) for k, h in holds if k]
+    if not named:
+        return ""
+    groups = {h: [k for k, v in named if v is h] for h in (True, False, None)}
+    parts = [f"{label} {', '.join(groups[h])}" for h, label in
+             ((True, "holds under"), (False, "not under"), (None, "undetermined under"))
+             if groups[h]]
+    return "; ".join(parts)
+
+
+def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reproduced]:
+    """One row per quantity from rows evaluated under several variants (e.g. kinematics).
+
+    The first variant is the reproduction: numeric rows keep its value and quote the others';
+    claim rows hold under each variant as that variant's row says, and quote each variant's
+    explanation where it differs from the first."""
+    (first, rows), *others = rows_by_variant.items()
+    other = {name: {r.quantity: r for r in rs} for name, rs in others}
+    merged = []
+    for row in rows:
+        alt = {name: by_quantity[row.quantity] for name, by_quantity in other.items()}
+        if row.reproduced is not None:
+            quoted = "".join(f"; {name}: {r.reproduced:.4g}" for name, r in alt.items())
+            merged.append(Reproduced(row.paper, row.quantity, row.reproduced,
+                                     row.explanation + quoted, implied=row.implied))
+            continue
+        holds = ((first, row.holds[0][1]),) + tuple((n, r.holds[0][1]) for n, r in alt.items())
+        text = f"{first}: {row.explanation}" + "".join(
+            f" | {name}: {r.explanation}" for name, r in alt.items()
+            if r.explanation != row.explanation)
+        merged.append(Reproduced(row.paper, row.quantity, None, text, holds=holds))
+    return merged
 
 
 def _float_or_none(text: str) -> float | None:
@@ -63,21 +147,40 @@ def read_paper_values(path: str | Path) -> list[dict]:
         rows = [row for row in csv.DictReader(fh) if not row["paper"].startswith("#")]
     for row in rows:
         row["value"] = _float_or_none(row["value"])
+        if row["source"] not in SOURCES:
+            raise ValueError(f"{path}: {row['quantity']}: source {row['source']!r} is not one of "
+                             f"{SOURCES}")
     return rows
+
+
+def _holds_from_text(text: str):
+    inverse = {v: k for k, v in _HOLDS_TEXT.items()}
+    pairs = [item.rsplit("=", 1) if "=" in item else ("", item)
+             for item in text.split(";") if item]
+    return tuple((k, inverse[v]) for k, v in pairs)
+
+
+def _holds_to_text(holds) -> str:
+    return ";".join(f"{k}={_HOLDS_TEXT[h]}" if k else _HOLDS_TEXT[h] for k, h in holds)
+
+
+REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "explanation")
 
 
 def read_reproduced(path: str | Path) -> list[Reproduced]:
     with open(path, newline="", encoding="utf-8") as fh:
         return [Reproduced(r["paper"], r["quantity"], _float_or_none(r["reproduced"]),
-                           r["explanation"]) for r in csv.DictReader(fh)]
+                           r["explanation"], _holds_from_text(r["holds"]),
+                           _float_or_none(r["implied"])) for r in csv.DictReader(fh)]
 
 
 def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
     with open(path, "w", newline="", encoding="utf-8") as fh:
         writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(["paper", "quantity", "reproduced", "explanation"])
+        writer.writerow(REPRODUCED_COLUMNS)
         for r in rows:
             writer.writerow([r.paper, r.quantity, "" if r.reproduced is None else repr(r.reproduced),
+                             _holds_to_text(r.holds), "" if r.implied is None else repr(r.implied),
                              r.explanation])
 
 
@@ -103,12 +206,20 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
         if key not in by_key:
             raise ValueError(f"paper value {key} has no reproduced value")
         r = by_key[key]
-        rel, verdict_ = verdict(p["value"], r.reproduced)
-        if verdict_ != "MATCH" and not r.explanation.strip():
+        rel, verdict_ = verdict(p["value"], r.reproduced, source=p["source"], holds=r.holds,
+                                implied=r.implied)
+        if verdict_ not in ("MATCH", "EXPECTED") and not r.explanation.strip():
             raise ValueError(f"{key} is {verdict_} but has no explanation")
+        explanation = r.explanation
+        if verdict_ == "PAPER-INCONSISTENT":
+            explanation = (f"the paper prints {p['value']:g} but its own other numbers imply "
+                           f"{r.implied:.4g}; {explanation}")
+        elif describe_holds(r.holds):
+            explanation = f"{describe_holds(r.holds)}: {explanation}"
         table.append({"paper": p["paper"], "item": p["item"], "quantity": p["quantity"],
-                      "unit": p["unit"], "paper_value": p["value"], "reproduced": r.reproduced,
-                      "rel_error": rel, "verdict": verdict_, "explanation": r.explanation})
+                      "unit": p["unit"], "source": p["source"], "paper_value": p["value"],
+                      "reproduced": r.reproduced, "rel_error": rel, "verdict": verdict_,
+                      "explanation": explanation})
     return table
 
 
@@ -117,15 +228,27 @@ def paper_values_of(path: str | Path, paper: str) -> dict[str, float | None]:
     return {row["quantity"]: row["value"] for row in read_paper_values(path) if row["paper"] == paper}
 
 
-def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path) -> None:
-    """``results/comparison.csv`` and ``.md``: the rows of :func:`build_table`."""
+def totals(table: list[dict]) -> list[str]:
+    """Verdict counts in three groups: printed numbers, chosen/theoretical values, claims."""
     counts = {}
     for row in table:
         counts[row["verdict"]] = counts.get(row["verdict"], 0) + 1
-    notes = ["Verdicts: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %), "
-             "QUALITATIVE (claim without a number; the explanation says whether the data "
-             "support it).",
-             "Totals: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))]
+    groups = (("printed numbers", NUMERIC_VERDICTS), ("chosen or theoretical values",
+                                                      EXPECTATION_VERDICTS),
+              ("claims", CLAIM_VERDICTS))
+    return [f"{name} ({sum(counts.get(v, 0) for v in verdicts)}): "
+            + ", ".join(f"{v} {counts.get(v, 0)}" for v in verdicts) for name, verdicts in groups]
+
+
+def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path) -> None:
+    """``results/comparison.csv`` and ``.md``: the rows of :func:`build_table`."""
+    notes = ["Verdicts. Printed numbers: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR "
+             "(> 10 %), PAPER-INCONSISTENT (the paper's own numbers imply another value, which "
+             "the reproduction agrees with). Values the paper does not print (source chosen or "
+             "theory): EXPECTED (<= 1 %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT "
+             "SUPPORTED, DEPENDS (holds under some variants only; the explanation names them), "
+             "UNDETERMINED.",
+             "Totals: " + "; ".join(totals(table))]
 
     def percent(row):
         return {} if row["rel_error"] is None else {"rel_error": f"{100 * row['rel_error']:.2f} %"}

@@ -11,5 +11,6 @@ from rotorvib.papers.c.studies import mass_ratio_dataset
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])
-ds = mass_ratio_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), p.family["mu"], w)
+ds = mass_ratio_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), p.family["mu"], w,
+                        p.family["constructions"])
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

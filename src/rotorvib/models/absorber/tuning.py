@@ -25,9 +25,23 @@ def den_hartog_single(rotor: Rotor, m: float, d: float) -> AbsorberSet:
     return AbsorberSet(m=m, k=m * omega_a**2 / 2, c=zeta * m * omega_a, d=d)
 
 
-def mass_ratio_family(reference, mu: float):
-    """Dual absorber with ``m2 = mu m1`` and ``k2 = mu k1`` (set 2 keeps the tuning
-    ``2 k2 / m2 = 2 k1 / m1`` of the reference); ``c1, c2, d1, d2`` as in the reference.
-    For the paper's Table 2 (``m2/m1 = k2/k1 = 0.85``) ``mu = 0.85`` returns Table 2 itself."""
+#: Ways to build a dual absorber of mass ratio ``mu = m2/m1`` from a reference one (Fig 6; the
+#: paper does not say which it used): ``tuned`` scales the spring with the mass, ``mass_only``
+#: keeps the reference spring.
+CONSTRUCTIONS = {
+    "tuned": "m2 = mu m1, k2 = mu k1",
+    "mass_only": "m2 = mu m1, k2 as the reference",
+}
+
+
+def mass_ratio_family(reference, mu: float, construction: str = "tuned"):
+    """Dual absorber with ``m2 = mu m1``; ``tuned`` also sets ``k2 = mu k1`` (set 2 keeps the
+    tuning ``2 k2 / m2 = 2 k1 / m1`` of the reference), ``mass_only`` keeps the reference's
+    ``k2``; ``c1, c2, d1, d2`` as in the reference.  For the paper's Table 2
+    (``m2/m1 = k2/k1 = 0.85``) ``mu = 0.85`` returns Table 2 itself under both."""
     first, second = reference
-    return first, replace(second, m=mu * first.m, k=mu * first.k)
+    if construction == "tuned":
+        return first, replace(second, m=mu * first.m, k=mu * first.k)
+    if construction == "mass_only":
+        return first, replace(second, m=mu * first.m)
+    raise ValueError(f"unknown construction {construction!r}; one of {list(CONSTRUCTIONS)}")

@@ -17,7 +17,7 @@ from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
 from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
                                                  dual_to_vector, effective_mass_ratio, undamped)
 from rotorvib.models.absorber.time_response import simulate, undamped_resonance_envelope
-from rotorvib.models.absorber.tuning import den_hartog_single, mass_ratio_family
+from rotorvib.models.absorber.tuning import CONSTRUCTIONS, den_hartog_single, mass_ratio_family
 from rotorvib.papers.c.optimise import design_bounds
 
 REFERENCE = ("Paper C: dual dynamic vibration absorber for the torsional vibration of a rotor, "
@@ -126,18 +126,23 @@ def frequency_response_dataset(rotor: Rotor, table2, x_opt, w) -> xr.Dataset:
     )
 
 
-def mass_ratio_dataset(rotor: Rotor, table2, mu, w) -> xr.Dataset:
-    """Fig 6: D(mu, w) for the mass-ratio family built from Table 2."""
+def mass_ratio_dataset(rotor: Rotor, table2, mu, w, constructions) -> xr.Dataset:
+    """Fig 6: D(construction, mu, w) for the mass-ratio family built from Table 2 under each
+    construction of :data:`~rotorvib.models.absorber.tuning.CONSTRUCTIONS`."""
     omega = np.asarray(w) * rotor.omega_n
-    D = np.stack([dimensionless_amplitude(
-        rotor, steady_state(rotor, mass_ratio_family(table2, m), omega)[..., 0]) for m in mu])
+    D = np.stack([[dimensionless_amplitude(
+        rotor, steady_state(rotor, mass_ratio_family(table2, m, c), omega)[..., 0]) for m in mu]
+        for c in constructions])
+    built = "; ".join(f"{c}: {CONSTRUCTIONS[c]}" for c in constructions)
     return xr.Dataset(
-        {"D": (("mu", "w"), D, {"long_name": f"{_D}, dual absorber with m2 = mu m1, k2 = mu k1",
-                                "units": "1"})},
-        coords={"mu": ("mu", np.asarray(mu, float), {"long_name": "mass ratio m2/m1", "units": "1"}),
+        {"D": (("construction", "mu", "w"), D,
+               {"long_name": f"{_D}, dual absorber of mass ratio mu", "units": "1"})},
+        coords={"construction_name": ("construction", np.array(constructions, dtype=object),
+                                      {"long_name": f"construction of the family ({built})"}),
+                "mu": ("mu", np.asarray(mu, float), {"long_name": "mass ratio m2/m1", "units": "1"}),
                 "w": ("w", np.asarray(w, float), _W)},
         attrs={"title": "Paper C: frequency response for the mass-ratio family",
-               "summary": "D(w) for m2 = mu m1, k2 = mu k1, other parameters of Table 2 (Fig 6)",
+               "summary": f"D(w) for m2 = mu m1 ({built}), other parameters of Table 2 (Fig 6)",
                "references": f"{REFERENCE}; Fig 6"},
     )
 
