@@ -116,6 +116,7 @@ rule b_stability:
     params:
         zeta=B["machine"]["zeta"],
         n=B["machine"]["n"],
+        marginal=B["marginal_growth"],
         map=lambda wc: B["stability_maps"][wc.fig],
     message:
         "Paper B: stability map of {wildcards.fig}"

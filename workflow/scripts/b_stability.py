@@ -11,5 +11,6 @@ sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 grid = {key: np.linspace(v["min"], v["max"], v["n"]) if isinstance(v, dict) else v
         for key, v in p.map.items()}
-ds = stability_dataset(zeta=p.zeta, n=p.n, where=f"Fig {snakemake.wildcards.fig[3:]}", **grid)
+ds = stability_dataset(zeta=p.zeta, n=p.n, where=f"Fig {snakemake.wildcards.fig[3:]}",
+                       marginal=p.marginal, **grid)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))

@@ -275,19 +275,26 @@ def response_rows(tr: xr.Dataset, kin: str) -> list[Reproduced]:
 
 
 def _above_critical(st: xr.Dataset) -> tuple[bool, float, str]:
-    """Whether every stable point lies above the critical speed; the lowest stable speed, and a
-    note when it sits on the edge of the chosen grid (the boundary may go on falling)."""
+    """Whether every stable point lies above the critical speed; the lowest exact onset of
+    stability over the rows, and a note when it falls on the first or last row of the chosen
+    grid (the boundary may go on falling beyond it) or when marginal points exist."""
     stable = st.state.values == 1
     margin = st.omega_bar.values[None, :] - st.critical_speed.values[:, None]
-    if not stable.any():
-        return True, np.nan, ""
-    column = int(np.flatnonzero(stable.any(axis=0))[0])
-    rows = np.flatnonzero(stable[:, column])
-    edge = rows[0] == 0 or rows[-1] == stable.shape[0] - 1
+    onsets = st.stability_onset.values
+    if not np.isfinite(onsets).any():
+        return bool(np.all(margin[stable] > 0)), np.nan, ""
+    lowest = int(np.nanargmin(onsets))
     axis = st.state.dims[0]
-    note = (f" (reached at the edge of the chosen {axis} range, where the boundary may go on "
-            "falling: a property of the grid, not of the balancer)" if edge else "")
-    return bool(np.all(margin[stable] > 0)), float(st.omega_bar.values[column]), note
+    notes = []
+    if lowest in (0, onsets.size - 1):
+        notes.append(f"at the edge of the chosen {axis} range, where the boundary may go on "
+                     "falling: a property of the grid, not of the balancer")
+    marginal = int((st.state.values == 3).sum())
+    if marginal:
+        notes.append(f"{marginal} marginal grid points (|growth rate| <= "
+                     f"{float(st.marginal_growth):g}) are counted neither stable nor unstable")
+    note = f" ({'; '.join(notes)})" if notes else ""
+    return bool(np.all(margin[stable] > 0)), float(onsets[lowest]), note
 
 
 def _band_holds(stable, zero_beta, betas) -> tuple[bool | None, str]:
@@ -313,15 +320,15 @@ def stability_rows(st2: xr.Dataset, st3: xr.Dataset) -> list[Reproduced]:
     return [
         _claim("fig2_above_critical", ok2,
              f"every stable point lies above the critical speed "
-             f"{float(st2.critical_speed[0]):.3f}; the lowest stable speed on the grid is "
-             f"{lowest2:.3f}{edge2}"),
+             f"{float(st2.critical_speed[0]):.3f}; the lowest onset of stability, located "
+             f"exactly on each row, is {lowest2:.4f}{edge2}"),
         _claim("fig2_beta_band", band_holds,
                f"beta = 0 is {'never' if not stable2[zero_beta].any() else 'sometimes'} stable; "
                "stable for " + (f"beta in [{band.min():.2f}, {band.max():.2f}] on the grid"
                                 if band.size else "no beta on the grid") + band_note),
         _claim("fig3_above_critical", ok3,
-             f"every stable point lies above its critical speed (lowest stable "
-             f"speed {lowest3:.3f}{edge3}); stable masses start at m_bar = "
+             f"every stable point lies above its critical speed (lowest exact onset of "
+             f"stability {lowest3:.4f}{edge3}); stable masses start at m_bar = "
              f"{stable_m.min() if stable_m.size else np.nan:.4f}, balanced states exist from "
              f"m_bar = {exists.min() if exists.size else np.nan:.4f} (bound 34: eps_bar/2 = "
              f"{float(st3.fixed_eps_bar) / 2:.4f})"),

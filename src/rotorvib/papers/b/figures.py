@@ -33,6 +33,11 @@ def stability_map(st, paper):
     if (state == 2).any():
         ax.contourf(W, Y, state == 2, levels=[0.5, 1.5], colors=["#d9d9d9"])
     ax.plot(st.critical_speed.values, st[y_name].values, "r:", lw=1.2)
+    ax.plot(st.stability_onset.values, st[y_name].values, "k.", ms=3,
+            label="onset of stability, located exactly")
+    if (state == 3).any():
+        ax.plot(W[state == 3], Y[state == 3], "x", color="0.35", ms=3,
+                label=f"marginal (|growth rate| <= {float(st.marginal_growth):g})")
     ax.plot([], [], color="#9ecae1", lw=8, label="stable balanced state")
     ax.plot([], [], "k", label="stability boundary (growth rate 0)")
     ax.plot([], [], "r:", label="critical speed sqrt(M/(M + 2m))")

@@ -5,34 +5,76 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from scipy.optimize import brentq
 
 from rotorvib.io.coords import axis_coord
 from rotorvib.models.balancer import stability
 from rotorvib.models.balancer.parameters import paper_b_groups
 from rotorvib.papers.b.setup import dataset_attrs
 
-def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where) -> xr.Dataset:
+
+def growth_rate(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray:
+    """Largest real part of the eigenvalues of the balanced state r* = 0 (eqs 27-32) in units
+    of paper B's omega_n; NaN where no balanced state exists (rho = m_bar/eps_bar < 1/2, eq. 34).
+    Vectorised over broadcast arguments."""
+    mu, rho, z, b, Om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    growth = np.full(mu.shape, np.nan)
+    exists = rho >= 0.5
+    if exists.any():
+        s = np.sqrt(1 + n * np.broadcast_to(m_bar, mu.shape)[exists])
+        growth[exists] = stability.max_real_part(mu[exists], rho[exists], z[exists], b[exists],
+                                                 Om[exists]) / s
+    return growth
+
+
+def stability_onsets(growth_of, omega_bar, growth, *, xtol: float = 1e-8) -> np.ndarray:
+    """Speeds at which each row of ``growth`` (rows x ``omega_bar``) turns from unstable to
+    stable with rising speed, located exactly: the root of ``growth_of(row, omega)`` between the
+    two grid speeds that bracket the first sign change (Brent's method, to ``xtol``).  NaN for a
+    row that never turns stable on the grid or is stable from its first speed on."""
+    onsets = np.full(growth.shape[0], np.nan)
+    for i, row in enumerate(growth):
+        turns = np.flatnonzero((row[:-1] >= 0) & (row[1:] < 0))
+        if turns.size:
+            j = turns[0]
+            onsets[i] = brentq(lambda w: float(growth_of(i, w)), omega_bar[j], omega_bar[j + 1],
+                               xtol=xtol)
+    return onsets
+
+
+def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where,
+                      marginal: float) -> xr.Dataset:
     """Growth rate of the balanced state (largest real part of the eigenvalues, in units of
-    paper B's omega_n) over a 2-D grid; ``m_bar`` or ``beta`` is the grid's first axis."""
+    paper B's omega_n) over a 2-D grid; ``m_bar`` or ``beta`` is the grid's first axis.  A point
+    whose growth rate lies within ``marginal`` of zero is marginal, neither stable nor unstable;
+    the onset of stability of every row is located exactly (:func:`stability_onsets`)."""
     first = "m_bar" if np.ndim(m_bar) else "beta"
     axis = np.asarray(m_bar if first == "m_bar" else beta, dtype=float)
-    A, W = np.meshgrid(axis, np.asarray(omega_bar, dtype=float), indexing="ij")
+    omega_bar = np.asarray(omega_bar, dtype=float)
+    A, W = np.meshgrid(axis, omega_bar, indexing="ij")
     mb, bt = (A, np.full(A.shape, beta)) if first == "m_bar" else (np.full(A.shape, m_bar), A)
-    mu, rho, z, b, Om = paper_b_groups(mb, eps_bar, zeta, bt, W, n)
-    exists = rho >= 0.5
-    growth = np.full(A.shape, np.nan)
-    if exists.any():
-        growth[exists] = stability.max_real_part(mu[exists], rho[exists], z[exists], b[exists],
-                                                 Om[exists]) / np.sqrt(1 + n * mb[exists])
-    state = np.where(~exists, 2, np.where(growth < 0, 1, 0)).astype(np.int8)
+    growth = growth_rate(mb, eps_bar, zeta, bt, W, n)
+    state = np.select([np.isnan(growth), np.abs(growth) <= marginal, growth < 0], [2, 3, 1],
+                      0).astype(np.int8)
+    onsets = stability_onsets(
+        lambda i, w: growth_rate(mb[i, 0], eps_bar, zeta, bt[i, 0], w, n), omega_bar,
+        np.where(np.abs(growth) <= marginal, 0.0, growth))
     names = {"m_bar": ("ball/disk mass ratio m/M", "1"), "beta": ("ball damping ratio beta", "1")}
     return xr.Dataset(
         {"growth_rate": ((first, "omega_bar"), growth,
                          {"long_name": "largest real part of the eigenvalues / omega_n "
                                        "(NaN: no balanced state)", "units": "1"}),
          "state": ((first, "omega_bar"), state,
-                   {"long_name": "balanced state", "units": "1", "flag_values": np.int8([0, 1, 2]),
-                    "flag_meanings": "unstable stable no_balanced_state"}),
+                   {"long_name": "balanced state", "units": "1",
+                    "flag_values": np.int8([0, 1, 2, 3]),
+                    "flag_meanings": "unstable stable no_balanced_state marginal"}),
+         "marginal_growth": ((), float(marginal),
+                             {"long_name": "|growth rate| at or below which a point is marginal",
+                              "units": "1"}),
+         "stability_onset": (first, onsets,
+                             {"long_name": "speed ratio omega/omega_n at which the balanced "
+                                           "state turns stable, located exactly (NaN: not on "
+                                           "the grid)", "units": "1"}),
          "critical_speed": (first, 1 / np.sqrt(1 + n * mb[:, 0]),
                             {"long_name": "undamped critical speed of disk and balls, "
                                           "sqrt(M/(M + n m)) (omega_bar)", "units": "1"}),
