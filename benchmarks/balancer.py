@@ -121,12 +121,12 @@ def main():
     print(f"batch of {args.runs} run-ups (20 s each) on all cores: {batch:.2f} s "
           f"({np.mean(metric(metrics, 'balanced') == 1) * 100:.0f} % balanced, "
           f"{np.sum(metric(metrics, 'status') != engine.OK)} failed)")
+    c = CRITERION
     probe = ("import time; t = time.perf_counter(); import numpy as np; "
              "from rotorvib.models.balancer import engine; "
              "from rotorvib.models.balancer.simulate import BalanceCriterion, run; "
-             "from benchmarks.balancer import case, CRITERION; p, y0 = case(); "
-             "run(engine.FIXED, p, y0, BalanceCriterion(CRITERION.r_threshold, "
-             "CRITERION.f_threshold, 0.01, CRITERION.sample_dt)); "
+             f"run(engine.FIXED, np.array({p.tolist()}), np.array({y0.tolist()}), "
+             f"BalanceCriterion({c.r_threshold!r}, {c.f_threshold!r}, 0.01, {c.sample_dt!r})); "
              "print(time.perf_counter() - t)")
     load = float(subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                                 check=True).stdout)
