@@ -78,8 +78,7 @@ def ga_rows(ga: xr.Dataset, omega_n: float, J: float, paper: dict) -> list[Repro
     outside = [f"{n} = {v:.4g} outside [{a:.4g}, {b:.4g}]"
                for n, v, a, b in zip(DUAL_NAMES, x_t2, lo, hi) if not a <= v <= b]
     rows.append(_claim("table2_within_bounds", not outside,
-                     f""
-                     + ("; ".join(outside) if outside else "all eight values lie within the bounds")))
+                       "; ".join(outside) if outside else "all eight values lie within the bounds"))
     return rows
 
 

@@ -25,11 +25,6 @@ def resonance_objective(rotor: Rotor):
     return objective
 
 
-def violated_bounds(x, lower, upper) -> list[str]:
-    """Names of the design variables of ``x`` outside ``[lower, upper]``."""
-    return [name for name, v, lo, hi in zip(DUAL_NAMES, x, lower, upper) if not lo <= v <= hi]
-
-
 def tune_dual_absorber(rotor: Rotor, bounds: dict, *, pop_size: int, n_gen: int, seed: int,
                        sbx_eta: float, pm_eta: float, progress=None) -> GAResult:
     lower, upper = design_bounds(bounds)
