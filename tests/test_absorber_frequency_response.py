@@ -5,6 +5,7 @@ import pytest
 
 from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
                                                          dimensionless_amplitude, matrices,
+                                                         natural_frequencies, rotor_peak,
                                                          steady_state, theta_eq20)
 from rotorvib.models.absorber.parameters import (AbsorberSet, dual_to_vector, effective_mass_ratio,
                                                  undamped)
@@ -84,3 +85,28 @@ def test_den_hartog_single_absorber_reaches_the_classical_peak(rotor):
 
 def test_absorber_set_frequency():
     assert AbsorberSet(m=0.1, k=10000.0, c=0.0, d=0.1).omega_a == pytest.approx(np.sqrt(2e5))
+
+
+def test_undamped_response_is_unbounded_at_the_natural_frequencies(rotor, table2):
+    """No absorber: the single natural frequency is w = 1. Table 2 undamped: D grows without
+    bound towards the two frequencies the rotor takes part in (the middle one, sqrt(2k/m) of
+    the equally tuned sets, is the anti-phase mode the torque does not excite)."""
+    assert natural_frequencies(rotor, ()) == pytest.approx([1.0], rel=1e-12)
+    w_nat = natural_frequencies(rotor, undamped(table2))
+    assert w_nat[1] == pytest.approx(np.sqrt(2 * 1e4 / 0.1) / rotor.omega_n, rel=1e-10)
+    for w in w_nat[[0, 2]]:
+        D = [dimensionless_amplitude(rotor, steady_state(rotor, undamped(table2),
+                                                         w * (1 + e) * rotor.omega_n)[0])
+             for e in (1e-3, 1e-6)]
+        assert D[1] > 900 * D[0]  # D ~ 1/|w - w_i|
+
+
+def test_true_peak_beats_a_dense_grid_and_approaches_den_hartog(rotor, table2):
+    w_peak, D_peak = rotor_peak(rotor, table2)
+    grid = np.linspace(0.3, 2.0, 200001)
+    D_grid = dimensionless_amplitude(rotor, steady_state(rotor, table2, grid * rotor.omega_n)[:, 0])
+    assert D_peak == pytest.approx(D_grid.max(), rel=1e-6) and D_peak >= D_grid.max()
+    assert w_peak == pytest.approx(grid[np.argmax(D_grid)], abs=2e-5)
+    single = den_hartog_single(rotor, 0.1, 0.1)
+    mu = 2 * 0.1 * 0.1**2 / rotor.J  # Den Hartog's equal fixed points: D = sqrt(1 + 2/mu)
+    assert rotor_peak(rotor, (single,))[1] == pytest.approx(np.sqrt(1 + 2 / mu), rel=0.01)

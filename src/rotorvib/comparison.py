@@ -40,8 +40,9 @@ class Reproduced:
     """One reproduced quantity, as written by a paper's comparison-values script.
 
     ``holds`` (claims only) pairs each variant the claim was evaluated under with whether it
-    holds there (None: undetermined); ``implied`` is the value the paper's own other numbers
-    imply, when the paper states the quantity twice."""
+    holds there (None: undetermined); ``variants`` (numbers only) pairs each other variant with
+    its value; ``implied`` is the value the paper's own other numbers imply, when the paper
+    states the quantity twice."""
 
     paper: str
     quantity: str
@@ -49,6 +50,7 @@ class Reproduced:
     explanation: str
     holds: tuple[tuple[str, bool | None], ...] = ()
     implied: float | None = None
+    variants: tuple[tuple[str, float], ...] = ()
 
     @classmethod
     def of(cls, paper: str, quantity: str, value, explanation: str,
@@ -128,7 +130,8 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reprodu
         if row.reproduced is not None:
             quoted = "".join(f"; {name}: {r.reproduced:.4g}" for name, r in alt.items())
             merged.append(Reproduced(row.paper, row.quantity, row.reproduced,
-                                     row.explanation + quoted, implied=row.implied))
+                                     row.explanation + quoted, implied=row.implied,
+                                     variants=tuple((n, r.reproduced) for n, r in alt.items())))
             continue
         holds = ((first, row.holds[0][1]),) + tuple((n, r.holds[0][1]) for n, r in alt.items())
         text = f"{first}: {row.explanation}" + "".join(
@@ -146,6 +149,7 @@ def read_paper_values(path: str | Path) -> list[dict]:
     with open(path, newline="", encoding="utf-8") as fh:
         rows = [row for row in csv.DictReader(fh) if not row["paper"].startswith("#")]
     for row in rows:
+        row["value_text"] = row["value"]
         row["value"] = _float_or_none(row["value"])
         if row["source"] not in SOURCES:
             raise ValueError(f"{path}: {row['quantity']}: source {row['source']!r} is not one of "
@@ -164,14 +168,21 @@ def _holds_to_text(holds) -> str:
     return ";".join(f"{k}={_HOLDS_TEXT[h]}" if k else _HOLDS_TEXT[h] for k, h in holds)
 
 
-REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "explanation")
+def _variants_from_text(text: str):
+    return tuple((k, float(v)) for k, v in (item.rsplit("=", 1) for item in text.split(";")
+                                            if item))
+
+
+REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "variants",
+                      "explanation")
 
 
 def read_reproduced(path: str | Path) -> list[Reproduced]:
     with open(path, newline="", encoding="utf-8") as fh:
         return [Reproduced(r["paper"], r["quantity"], _float_or_none(r["reproduced"]),
                            r["explanation"], _holds_from_text(r["holds"]),
-                           _float_or_none(r["implied"])) for r in csv.DictReader(fh)]
+                           _float_or_none(r["implied"]), _variants_from_text(r["variants"]))
+                for r in csv.DictReader(fh)]
 
 
 def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
@@ -181,7 +192,7 @@ def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
         for r in rows:
             writer.writerow([r.paper, r.quantity, "" if r.reproduced is None else repr(r.reproduced),
                              _holds_to_text(r.holds), "" if r.implied is None else repr(r.implied),
-                             r.explanation])
+                             ";".join(f"{k}={v!r}" for k, v in r.variants), r.explanation])
 
 
 def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[dict]:
@@ -240,15 +251,17 @@ def totals(table: list[dict]) -> list[str]:
             + ", ".join(f"{v} {counts.get(v, 0)}" for v in verdicts) for name, verdicts in groups]
 
 
-def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path) -> None:
-    """``results/comparison.csv`` and ``.md``: the rows of :func:`build_table`."""
+def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path,
+                      more_totals: tuple[str, ...] = ()) -> None:
+    """``results/comparison.csv`` and ``.md``: the rows of :func:`build_table`, with the
+    verdict totals and ``more_totals`` (e.g. of the discrepancy analysis) in the header."""
     notes = ["Verdicts. Printed numbers: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR "
              "(> 10 %), PAPER-INCONSISTENT (the paper's own numbers imply another value, which "
              "the reproduction agrees with). Values the paper does not print (source chosen or "
              "theory): EXPECTED (<= 1 %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT "
              "SUPPORTED, DEPENDS (holds under some variants only; the explanation names them), "
              "UNDETERMINED.",
-             "Totals: " + "; ".join(totals(table))]
+             "Totals: " + "; ".join(totals(table) + list(more_totals))]
 
     def percent(row):
         return {} if row["rel_error"] is None else {"rel_error": f"{100 * row['rel_error']:.2f} %"}

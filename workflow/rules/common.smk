@@ -65,7 +65,11 @@ RESULTS = {}
 def all_results():
     """Every final file: each paper's results and the comparison."""
     files = [f for paper in sorted(RESULTS) for f in RESULTS[paper]]
-    return files + ["results/comparison.csv", "results/comparison.md"]
+    return files + [
+        f"results/{name}.{ext}"
+        for name in ("comparison", "discrepancies")
+        for ext in ("csv", "md")
+    ]
 
 
 def results_of(paper, datasets, tables=()):

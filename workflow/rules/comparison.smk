@@ -1,4 +1,5 @@
-# The side-by-side table of every value the papers state against the reproduction.
+# The side-by-side table of every value the papers state against the reproduction, and the
+# discrepancy analysis of the numbers it misses.
 
 
 rule comparison:
@@ -9,6 +10,10 @@ rule comparison:
             rules.b_reproduced_values.output[0],
             rules.c_reproduced_values.output[0],
         ],
+        discrepancies=[
+            rules.b_discrepancies.output[0],
+            rules.c_discrepancies.output[0],
+        ],
     output:
         csv=report(
             "results/comparison.csv",
@@ -16,11 +21,13 @@ rule comparison:
             category="Comparison",
         ),
         md="results/comparison.md",
+        discrepancies_csv="results/discrepancies.csv",
+        discrepancies_md="results/discrepancies.md",
     log:
         logs("comparison"),
     conda:
         ENV
     message:
-        "Comparison of every stated value with the reproduction"
+        "Comparison of every stated value with the reproduction, and its discrepancy analysis"
     script:
         "../scripts/comparison.py"

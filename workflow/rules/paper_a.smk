@@ -122,6 +122,7 @@ rule a_reproduced_values:
         ENV
     params:
         case=A["case"],
+        zoom=A["zoom"],
     message:
         "Paper A: measuring the paper's claims on the datasets"
     script:

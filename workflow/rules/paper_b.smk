@@ -73,6 +73,7 @@ RESULTS["b"] = results_of(
         "table1",
         "forces",
         "basin",
+        "discrepancies",
     ]
     + [f"balance_{name}" for name in B["balance_studies"]],
     ["derivation_checks", "table1", "table2"],
@@ -312,3 +313,41 @@ rule b_reproduced_values:
         "Paper B: measuring the paper's stated values and claims on the datasets"
     script:
         "../scripts/b_reproduced_values.py"
+
+
+rule b_discrepancies:
+    input:
+        reproduced=rules.b_reproduced_values.output[0],
+        paper_values=PAPER_VALUES,
+    output:
+        dataset("b", "discrepancies"),
+    log:
+        logs("b_discrepancies"),
+    benchmark:
+        benchmarks("b_discrepancies")
+    conda:
+        ENV
+    threads: 2
+    params:
+        paper_b={
+            **{
+                k: B[k]
+                for k in (
+                    "machine",
+                    "initial_state",
+                    "speed",
+                    "balance",
+                    "kinematics",
+                    "initial_conditions",
+                    "table1",
+                    "table2",
+                )
+            },
+            "time_responses": {"fig7": B["time_responses"]["fig7"]},
+        },
+        parameters=config["discrepancies"]["paper_b"],
+        inversion=config["discrepancies"]["inversion"],
+    message:
+        "Paper B: the printed numbers the reproduction misses, under hypotheses and inverted"
+    script:
+        "../scripts/b_discrepancies.py"

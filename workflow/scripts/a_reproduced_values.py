@@ -10,6 +10,7 @@ from rotorvib.papers.a.claims import reproduce
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
         if name != "paper_values"}
-rows = reproduce(**data, case_beta=snakemake.params.case["beta"],
+p = snakemake.params
+rows = reproduce(**data, case_beta=p.case["beta"], window=p.zoom[1] - p.zoom[0],
                  paper_values=paper_values_of(snakemake.input.paper_values, "A"))
 write_reproduced(rows, snakemake.output[0])

@@ -11,7 +11,7 @@ from rotorvib.papers.c.claims import reproduce
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 rotor = Rotor(**p.rotor)
-data = {name: xr.load_dataset(snakemake.input[name]) for name in ("ga", "fr", "mr", "tr")}
+data = {name: xr.load_dataset(snakemake.input[name]) for name in ("ga", "fr", "mr", "distance", "tr")}
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
                  paper_values=paper_values_of(snakemake.input.paper_values, "C"))
 write_reproduced(rows, snakemake.output[0])

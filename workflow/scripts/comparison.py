@@ -1,7 +1,11 @@
-"""Rule comparison: join the papers' values with the reproduced ones (results/comparison.*)."""
+"""Rule comparison: join the papers' values with the reproduced ones (results/comparison.*) and
+explain every number missed by the discrepancy analysis (results/discrepancies.*)."""
 
 import sys
 
+import xarray as xr
+
+from rotorvib import discrepancy
 from rotorvib.comparison import (build_table, read_paper_values, read_reproduced,
                                  write_table_files)
 
@@ -10,4 +14,10 @@ reproduced = [row for path in snakemake.input.reproduced for row in read_reprodu
 papers = {row.paper for row in reproduced}
 values = [row for row in read_paper_values(snakemake.input.paper_values) if row["paper"] in papers]
 table = build_table(values, reproduced)
-write_table_files(table, snakemake.output.csv, snakemake.output.md)
+analyses = discrepancy.analyse(
+    table, values, reproduced,
+    [discrepancy.from_dataset(xr.load_dataset(path)) for path in snakemake.input.discrepancies])
+discrepancy.write_files(analyses, snakemake.output.discrepancies_csv,
+                        snakemake.output.discrepancies_md)
+write_table_files(discrepancy.annotate(table, analyses), snakemake.output.csv,
+                  snakemake.output.md, more_totals=(discrepancy.totals(analyses),))

@@ -13,6 +13,8 @@ Three routes to the same amplitude, used to check one another:
 from __future__ import annotations
 
 import numpy as np
+from scipy.linalg import eigvals
+from scipy.optimize import minimize_scalar
 
 from rotorvib.models.absorber.parameters import Rotor
 
@@ -81,3 +83,29 @@ def bare_rotor_amplitude(w) -> np.ndarray:
     """``D = 1/|1 - w^2|`` of the rotor without absorber (infinite at ``w = 1``)."""
     with np.errstate(divide="ignore"):
         return 1.0 / np.abs(1.0 - np.asarray(w, dtype=float) ** 2)
+
+
+def natural_frequencies(rotor: Rotor, sets) -> np.ndarray:
+    """Undamped natural frequencies ``w_i / omega_n``, ascending: ``sqrt`` of the eigenvalues of
+    ``K q = w^2 M q`` (the poles of the response without damping, where D is unbounded)."""
+    M, _, K = matrices(rotor, sets)
+    lam = np.sort(eigvals(K, M).real)
+    return np.sqrt(lam) / rotor.omega_n
+
+
+def rotor_peak(rotor: Rotor, sets, *, samples: int = 4001) -> tuple[float, float]:
+    """``(w, D)`` of the largest ``D(w) = |Theta| k_t / Gamma0`` over all frequencies of a damped
+    design: sampled on ``[w_1 / 2, 2 w_n]`` around its undamped natural frequencies ``w_i``
+    (log-spaced), then refined by a bounded scalar search between the neighbours of the best
+    sample."""
+    w_nat = natural_frequencies(rotor, sets)
+    w = np.geomspace(w_nat[0] / 2, 2 * w_nat[-1], samples)
+
+    def D(x):
+        return dimensionless_amplitude(rotor, steady_state(rotor, sets, np.asarray(x) * rotor.omega_n)[..., 0])
+
+    i = int(np.argmax(D(w)))
+    lo, hi = w[max(i - 1, 0)], w[min(i + 1, samples - 1)]
+    best = minimize_scalar(lambda x: -float(D(x)), bounds=(lo, hi), method="bounded",
+                           options={"xatol": 1e-10})
+    return float(best.x), float(-best.fun)

@@ -40,6 +40,7 @@ def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, ma
     shape = (len(kinematics), len(eps_bars), len(ics))
     x_opt, f_opt = np.empty(shape + (2,)), np.empty(shape)
     history = np.empty(shape + (n_gen,))
+    n_eval = np.empty(shape, dtype=np.int64)
     for i, kin in enumerate(kinematics):
         for j, eps_bar in enumerate(eps_bars):
             for q, ic in enumerate(ics):
@@ -50,6 +51,7 @@ def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, ma
                                     n_gen=n_gen, seed=seed)
                 x_opt[i, j, q], f_opt[i, j, q] = res.x, res.f
                 history[i, j, q] = res.history["best_f"]
+                n_eval[i, j, q] = res.history["n_eval"][-1]
     dims = ("kinematics", "eps_bar", "ic")
     return xr.Dataset(
         {"beta_opt": (dims, x_opt[..., 0], {"long_name": "optimum ball damping ratio",
@@ -57,6 +59,8 @@ def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, ma
          "mass_opt": (dims, x_opt[..., 1], {"long_name": "optimum ball mass", "units": "kg"}),
          "balance_time_opt": (dims, f_opt, {"long_name": "balance time at the optimum "
                                                          "(penalised if censored)", "units": "s"}),
+         "n_evaluations": (dims, n_eval, {"long_name": "balance-time evaluations (runs) of the "
+                                                       "GA", "units": "1"}),
          "best_balance_time": (dims + ("generation",), history,
                                {"long_name": "best balance time of each generation",
                                 "units": "s"})},

@@ -99,6 +99,19 @@ def fig6(mr, paper, w_low: float):
     return fig
 
 
+def distance(ds, paper):
+    """The abstract's distance study: D(w) with both absorber sets moved from Table 2's radii."""
+    fig, ax = figure()
+    for off in ds.offset.values:
+        ax.plot(ds.w.values, ds.D.sel(offset=off).values, lw=2.0 if off == 0 else 1.0,
+                label=f"{100 * off:+.0f} cm" + (" (Table 2: d1 = 10, d2 = 8 cm)" if off == 0
+                                                 else ""))
+    ax.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
+           title="Distance of both absorber sets from the disk centre (rest as Table 2)")
+    ax.legend(title="offset of d1 and d2")
+    return fig
+
+
 def fig7(tr, paper):
     """Fig 7: absorber displacements of the Table 2 dual absorber at resonance."""
     fig, ax = figure()

@@ -16,17 +16,20 @@ def design_bounds(bounds: dict) -> tuple[np.ndarray, np.ndarray]:
     return np.array([p[0] for p in pairs], float), np.array([p[1] for p in pairs], float)
 
 
-def resonance_objective(rotor: Rotor):
-    """``x[..., 8] -> |Theta(omega_n)|`` (rad), eq. (20) with the correct determinant."""
+def resonance_objective(rotor: Rotor, printed_determinant: bool = False):
+    """``x[..., 8] -> |Theta(omega_n)|`` (rad), eq. (20) with the correct determinant (or the
+    printed one)."""
 
     def objective(x):
-        return np.abs(theta_eq20(rotor, x, rotor.omega_n))
+        return np.abs(theta_eq20(rotor, x, rotor.omega_n, printed_determinant=printed_determinant))
 
     return objective
 
 
 def tune_dual_absorber(rotor: Rotor, bounds: dict, *, pop_size: int, n_gen: int, seed: int,
-                       sbx_eta: float, pm_eta: float, progress=None) -> GAResult:
+                       sbx_eta: float, pm_eta: float, progress=None,
+                       printed_determinant: bool = False) -> GAResult:
+    """Minimise :func:`resonance_objective` over the paper's bounds."""
     lower, upper = design_bounds(bounds)
-    return minimise(resonance_objective(rotor), lower, upper, pop_size=pop_size, n_gen=n_gen,
+    return minimise(resonance_objective(rotor, printed_determinant), lower, upper, pop_size=pop_size, n_gen=n_gen,
                     seed=seed, sbx_eta=sbx_eta, pm_eta=pm_eta, progress=progress)

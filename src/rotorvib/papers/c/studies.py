@@ -7,13 +7,16 @@ variables carry ``long_name`` and ``units``; writing (with provenance) is left t
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import xarray as xr
 
 from rotorvib.methods.ga import GAResult
 from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
-                                                         dimensionless_amplitude, steady_state,
-                                                         theta_eq20)
+                                                         dimensionless_amplitude,
+                                                         natural_frequencies, rotor_peak,
+                                                         steady_state, theta_eq20)
 from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
                                                  dual_to_vector, effective_mass_ratio, undamped)
 from rotorvib.models.absorber.time_response import simulate, undamped_resonance_envelope
@@ -91,13 +94,25 @@ def ga_dataset(rotor: Rotor, result: GAResult, table2, bounds: dict) -> xr.Datas
 
 
 def frequency_response_dataset(rotor: Rotor, table2, x_opt, w) -> xr.Dataset:
-    """Fig 5: D(w) without absorber, for Table 2, Table 2 undamped and the GA optimum."""
+    """Fig 5: D(w) without absorber, for Table 2, Table 2 undamped and the GA optimum; the
+    undamped natural frequencies of Table 2 (where its undamped D is unbounded) and the true
+    peak of each damped design over all frequencies (which may lie outside ``w``)."""
     omega = np.asarray(w) * rotor.omega_n
     x_t2 = dual_to_vector(table2)
     printed = dimensionless_amplitude(rotor, theta_eq20(rotor, x_t2, omega, printed_determinant=True))
     amplitudes = steady_state(rotor, table2, omega)
+    peaks = [rotor_peak(rotor, sets) for sets in (table2, dual_from_vector(x_opt))]
     return xr.Dataset(
         {
+            "natural_w_table2_undamped": (
+                "mode", natural_frequencies(rotor, undamped(table2)),
+                {"long_name": "undamped natural frequencies of Table 2 / omega_n (D unbounded "
+                              "there unless the rotor does not move in the mode)", "units": "1"}),
+            "peak_w": ("design", [p[0] for p in peaks],
+                       {"long_name": "frequency of the largest D over all frequencies",
+                        "units": "1"}),
+            "peak_D": ("design", [p[1] for p in peaks],
+                       {"long_name": f"largest {_D} over all frequencies", "units": "1"}),
             "D_none": ("w", bare_rotor_amplitude(w),
                        {"long_name": f"{_D}, no absorber, 1/|1 - w^2|", "units": "1",
                         "comment": "infinite at w = 1 (undamped resonance)"}),
@@ -118,7 +133,9 @@ def frequency_response_dataset(rotor: Rotor, table2, x_opt, w) -> xr.Dataset:
             "S2_table2": ("w", np.abs(amplitudes[:, 2]),
                           {"long_name": "steady amplitude of absorber set 2, Table 2", "units": "m"}),
         },
-        coords={"w": ("w", np.asarray(w, float), _W)},
+        coords={"w": ("w", np.asarray(w, float), _W),
+                "design": ("design", np.array(["table2", "ga"]),
+                           {"long_name": "damped design: Table 2 or the GA optimum"})},
         attrs={"title": "Paper C: frequency response of the rotor with and without absorbers",
                "summary": "D(w) of eq. (20) for no absorber, Table 2, Table 2 undamped and the "
                           "GA optimum (Fig 5)",
@@ -144,6 +161,35 @@ def mass_ratio_dataset(rotor: Rotor, table2, mu, w, constructions) -> xr.Dataset
         attrs={"title": "Paper C: frequency response for the mass-ratio family",
                "summary": f"D(w) for m2 = mu m1 ({built}), other parameters of Table 2 (Fig 6)",
                "references": f"{REFERENCE}; Fig 6"},
+    )
+
+
+def distance_dataset(rotor: Rotor, table2, offsets, w) -> xr.Dataset:
+    """The abstract's distance study: D(offset, w) and the true peak of Table 2's design with
+    both sets moved by ``offset`` (m) from the disk centre, ``d_j -> d_j + offset``."""
+    if min(s.d for s in table2) + min(offsets) <= 0:
+        raise ValueError(f"paper_c.distance_study.offsets: {min(offsets)} m moves a set through "
+                         "the disk centre")
+    omega = np.asarray(w) * rotor.omega_n
+    designs = [tuple(replace(s, d=s.d + off) for s in table2) for off in offsets]
+    D = np.stack([dimensionless_amplitude(rotor, steady_state(rotor, sets, omega)[..., 0])
+                  for sets in designs])
+    peaks = [rotor_peak(rotor, sets) for sets in designs]
+    return xr.Dataset(
+        {"D": (("offset", "w"), D, {"long_name": f"{_D}, Table 2 with both sets moved",
+                                    "units": "1"}),
+         "peak_w": ("offset", [p[0] for p in peaks],
+                    {"long_name": "frequency of the largest D over all frequencies", "units": "1"}),
+         "peak_D": ("offset", [p[1] for p in peaks],
+                    {"long_name": f"largest {_D} over all frequencies", "units": "1"})},
+        coords={"w": ("w", np.asarray(w, float), _W),
+                "offset": ("offset", np.asarray(offsets, float),
+                           {"long_name": "offset of both absorber sets from Table 2's distances "
+                                         "d1, d2 to the disk centre", "units": "m"})},
+        attrs={"title": "Paper C: the absorbers' distance from the disk centre",
+               "summary": "D(w) and its peak for Table 2 with both absorber sets moved radially "
+                          "(the abstract's distance study)",
+               "references": f"{REFERENCE}; abstract"},
     )
 
 
