@@ -1,11 +1,13 @@
 import hashlib
 import json
+
+import netCDF4
 import numpy as np
 import pytest
 import xarray as xr
 
 from conftest import cf_check
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 
 
 def _dataset():
@@ -48,3 +50,26 @@ def test_missing_units_or_title_are_refused(tmp_path):
 def test_written_file_passes_cf_1_11(tmp_path):
     passed, report = cf_check(write_dataset(_dataset(), tmp_path / "a.nc", Provenance("r", {})))
     assert passed, report
+
+
+def test_read_dataset_returns_what_was_written_with_nan_kept(tmp_path):
+    ds = _dataset()
+    ds["D"][3] = np.nan  # a legitimate NaN (e.g. a censored run) is part of the checksum
+    path = write_dataset(ds, tmp_path / "a.nc", Provenance("r", {}))
+    np.testing.assert_array_equal(read_dataset(path).D.values, ds.D.values)
+
+
+def test_a_nan_poisoned_variable_is_named_with_its_rule(tmp_path):
+    path = write_dataset(_dataset(), tmp_path / "a.nc", Provenance("b_ga", {}))
+    with netCDF4.Dataset(path, "r+") as nc:
+        nc["D"][5] = np.nan
+    with pytest.raises(DatasetError, match=r"variable 'D' is not what rule 'b_ga' wrote.*"
+                                           r"snakemake --forcerun b_ga"):
+        read_dataset(path)
+
+
+def test_a_truncated_dataset_says_how_to_rebuild_it(tmp_path):
+    path = write_dataset(_dataset(), tmp_path / "a.nc", Provenance("r", {}))
+    path.write_bytes(path.read_bytes()[:200])
+    with pytest.raises(DatasetError, match="cannot be read.*rerun snakemake"):
+        read_dataset(path)

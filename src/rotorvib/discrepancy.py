@@ -30,6 +30,7 @@ import xarray as xr
 from scipy.optimize import brentq
 
 from rotorvib.comparison import MATCH_TOL, relative_error, verdict
+from rotorvib.io.coords import label_coord, labels
 from rotorvib.io.tables import write_table
 
 KINDS = ("definition", "variant", "parameter slip", "unit of the result", "rounding")
@@ -200,14 +201,13 @@ def to_dataset(baselines: dict[str, float], hypotheses: list[Hypothesis],
                                    ("needed", "value that reproduces the printed number"),
                                    ("lower", "lower end of the range searched"),
                                    ("upper", "upper end of the range searched"))},
-    }, coords={"quantity": ("quantity", np.array(list(baselines), dtype=str),
-                            {"long_name": "analysed quantity (data/paper_values.csv)"})},
-        attrs=attrs)
+    }, coords=label_coord("quantity", list(baselines),
+                          "analysed quantity (data/paper_values.csv)"), attrs=attrs)
 
 
 def from_dataset(ds: xr.Dataset):
     """``(baselines, hypotheses, inversions)`` of :func:`to_dataset`."""
-    baselines = dict(zip(map(str, ds.quantity.values), map(float, ds.baseline.values)))
+    baselines = dict(zip(labels(ds, "quantity"), map(float, ds.baseline.values)))
     hypotheses = [Hypothesis(str(q), str(n), str(k), float(v)) for q, n, k, v in zip(
         ds.hypothesis_quantity.values, ds.hypothesis_name.values, ds.hypothesis_kind.values,
         ds.hypothesis_value.values)]

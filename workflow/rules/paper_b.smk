@@ -1,5 +1,5 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
-from rotorvib.papers.b.setup import study_problem
+from rotorvib.papers.b.setup import existence_problems, study_problem
 
 B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
 B_RUNS = {
@@ -11,6 +11,8 @@ B_RUNS = {
 for _name, _study in B["balance_studies"].items():
     if problem := study_problem(_study):
         raise WorkflowError(f"config key 'paper_b.balance_studies.{_name}': {problem}")
+if _problems := existence_problems(B):
+    raise WorkflowError("invalid configuration:\n  " + "\n  ".join(_problems))
 
 B_CAPTION = (
     "Solid lines: the paper's printed kinematics (the reproduction); dashed: the consistent "

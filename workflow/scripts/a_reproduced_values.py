@@ -2,13 +2,12 @@
 
 import sys
 
-import xarray as xr
-
 from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.a.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
-data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
+data = {name: read_dataset(path) for name, path in snakemake.input.items()
         if name != "paper_values"}
 p = snakemake.params
 rows = reproduce(**data, case_beta=p.case["beta"], window=p.zoom[1] - p.zoom[0],

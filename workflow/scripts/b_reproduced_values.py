@@ -2,14 +2,13 @@
 
 import sys
 
-import xarray as xr
-
 from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
-data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
+data = {name: read_dataset(path) for name, path in snakemake.input.items()
         if name != "paper_values"}
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band,
                  paper_values=paper_values_of(snakemake.input.paper_values, "B"))

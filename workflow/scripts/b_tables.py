@@ -3,13 +3,12 @@
 import sys
 from pathlib import Path
 
-import xarray as xr
-
+from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
 from rotorvib.papers.b.claims import kinematics_note, table1_rows, table2_rows
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
-data = {name: xr.load_dataset(path) for name, path in snakemake.input.items()}
+data = {name: read_dataset(path) for name, path in snakemake.input.items()}
 kin = str(data["table1"].kinematics_name.values[0])
 write_table(table1_rows(data["table1"], kin), snakemake.output.table1, snakemake.output.table1_md,
             title=f"Paper B, Table 1: optimum ball mass against operating speed ({kin} kinematics)")

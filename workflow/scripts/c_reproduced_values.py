@@ -2,16 +2,15 @@
 
 import sys
 
-import xarray as xr
-
 from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.io.datasets import read_dataset
 from rotorvib.models.absorber.parameters import Rotor
 from rotorvib.papers.c.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 rotor = Rotor(**p.rotor)
-data = {name: xr.load_dataset(snakemake.input[name]) for name in ("ga", "fr", "mr", "distance", "tr")}
+data = {name: read_dataset(snakemake.input[name]) for name in ("ga", "fr", "mr", "distance", "tr")}
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
                  paper_values=paper_values_of(snakemake.input.paper_values, "C"))
 write_reproduced(rows, snakemake.output[0])

@@ -2,12 +2,11 @@
 
 import sys
 
-import xarray as xr
-
+from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
 from rotorvib.papers.c.claims import table2_side_by_side
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
-rows = table2_side_by_side(xr.load_dataset(snakemake.input.ga))
+rows = table2_side_by_side(read_dataset(snakemake.input.ga))
 write_table(rows, snakemake.output.csv, snakemake.output.md,
             title="Table 2 of paper C beside the genetic-algorithm optimum")

@@ -3,11 +3,10 @@ explain every number missed by the discrepancy analysis (results/discrepancies.*
 
 import sys
 
-import xarray as xr
-
 from rotorvib import discrepancy
 from rotorvib.comparison import (build_table, read_paper_values, read_reproduced,
                                  write_table_files)
+from rotorvib.io.datasets import read_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 reproduced = [row for path in snakemake.input.reproduced for row in read_reproduced(path)]
@@ -16,7 +15,7 @@ values = [row for row in read_paper_values(snakemake.input.paper_values) if row[
 table = build_table(values, reproduced)
 analyses = discrepancy.analyse(
     table, values, reproduced,
-    [discrepancy.from_dataset(xr.load_dataset(path)) for path in snakemake.input.discrepancies])
+    [discrepancy.from_dataset(read_dataset(path)) for path in snakemake.input.discrepancies])
 discrepancy.write_files(analyses, snakemake.output.discrepancies_csv,
                         snakemake.output.discrepancies_md)
 write_table_files(discrepancy.annotate(table, analyses), snakemake.output.csv,

@@ -4,14 +4,13 @@ the drawing function is ``rotorvib.papers.<paper>.figures.<function>`` (params.m
 import importlib
 import sys
 
-import xarray as xr
-
 from rotorvib.comparison import paper_values_of
+from rotorvib.io.datasets import read_dataset
 from rotorvib.io.plotting import save
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
-datasets = {name: xr.load_dataset(path) for name, path in snakemake.input.items()
+datasets = {name: read_dataset(path) for name, path in snakemake.input.items()
             if name != "paper_values"}
 paper = paper_values_of(snakemake.input.paper_values, snakemake.wildcards.paper.upper())
 draw = getattr(importlib.import_module(p.module), p.function)

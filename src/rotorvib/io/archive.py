@@ -2,6 +2,8 @@
 
 The archive holds the files under their repository paths (``results/...``) plus
 ``results/ARCHIVE_MANIFEST.sha256`` (``sha256sum -c`` format) and ``results/ARCHIVE_README.md``.
+It is reproducible: members in sorted order with a fixed mtime (``SOURCE_DATE_EPOCH``, else 0),
+owner and mode, and a gzip header without a timestamp, so the same files give the same bytes.
 """
 
 from __future__ import annotations
@@ -10,7 +12,9 @@ import base64
 import gzip
 import hashlib
 import io
+import os
 import tarfile
+import zlib
 from pathlib import Path
 
 MANIFEST = "results/ARCHIVE_MANIFEST.sha256"
@@ -52,11 +56,16 @@ def sha256_file(path: str | Path) -> str:
     return digest.hexdigest()
 
 
+def _mtime() -> int:
+    return int(os.environ.get("SOURCE_DATE_EPOCH", 0))
+
+
 def _add_text(tar: tarfile.TarFile, name: str, text: str) -> None:
     data = text.encode()
     info = tarfile.TarInfo(name)
     info.size = len(data)
     info.mode = 0o644
+    info.mtime = _mtime()
     tar.addfile(info, io.BytesIO(data))
 
 
@@ -74,7 +83,8 @@ def make_archive(files: list[str | Path], output: str | Path) -> Path:
     manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files)
     output = Path(output)
     output.parent.mkdir(parents=True, exist_ok=True)
-    with open(output, "wb") as raw, gzip.GzipFile(fileobj=raw, mode="wb", mtime=0) as gz, \
+    with open(output, "wb") as raw, \
+            gzip.GzipFile(filename="", fileobj=raw, mode="wb", mtime=0) as gz, \
             tarfile.open(fileobj=gz, mode="w", format=tarfile.PAX_FORMAT) as tar:
         for f in files:
             tar.add(f, arcname=f, recursive=False, filter=_anonymise)
@@ -84,16 +94,29 @@ def make_archive(files: list[str | Path], output: str | Path) -> Path:
 
 
 def _anonymise(info: tarfile.TarInfo) -> tarfile.TarInfo:
+    """No owner, a fixed mode and mtime: the member depends on the file's bytes only."""
     info.uid = info.gid = 0
     info.uname = info.gname = ""
+    info.mode = 0o644
+    info.mtime = _mtime()
+    info.pax_headers = {}
     return info
 
 
 def verify_archive(path: str | Path) -> list[str]:
     """Check every member against the manifest; return the archived file paths.
 
-    Raises ``ValueError`` on a missing, extra or corrupted member.
+    Raises ``ValueError`` on a missing, extra or corrupted member, and on a file that is not
+    a complete gzip-compressed tar archive.
     """
+    try:
+        return _verify(path)
+    except (EOFError, OSError, tarfile.TarError, zlib.error, KeyError, UnicodeDecodeError) as e:
+        raise ValueError(f"{path}: not a complete rotorvib archive ({type(e).__name__}: {e})") \
+            from None
+
+
+def _verify(path: str | Path) -> list[str]:
     with tarfile.open(path, "r:gz") as tar:
         members = {m.name: m for m in tar.getmembers() if m.isfile()}
         expected = {}

@@ -1,8 +1,12 @@
 """Loading, validating and fingerprinting the pipeline configuration.
 
-The configuration is checked against a JSON Schema (``config/schema.yaml``) before any
-computation.  Defaults given in the schema are filled in, and every violation is reported
-with the dotted key it concerns and what the schema allows, e.g.::
+Files are read by a strict YAML loader: a duplicate key or a syntax error is reported with its
+file, line and column, and ``1e-9`` is a number (YAML 1.2) rather than a string.  The
+configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
+computation: every number must be finite, an integer must be written as one, and the schema's
+extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``, a cap on the points
+of a grid).  Defaults given in the schema are filled in, and every violation is reported with the
+dotted key it concerns and what is allowed, e.g.::
 
     config key 'paper_c.rotor.M': -1.0 is not allowed; must be a number > 0 (disk mass, kg)
 """
@@ -12,6 +16,8 @@ from __future__ import annotations
 import copy
 import hashlib
 import json
+import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -23,9 +29,45 @@ class ConfigError(ValueError):
     """The configuration does not satisfy the schema; the message lists every violation."""
 
 
+class _StrictLoader(yaml.SafeLoader):
+    """SafeLoader that refuses duplicate keys and reads ``1e-9`` as a float (YAML 1.2)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if key in seen:
+                mark = key_node.start_mark
+                raise ConfigError(f"{mark.name}:{mark.line + 1}:{mark.column + 1}: duplicate key "
+                                  f"{key!r} (first at line {seen[key] + 1}); YAML would silently "
+                                  "keep the last value")
+            seen[key] = key_node.start_mark.line
+        return super().construct_mapping(node, deep=deep)
+
+
+_StrictLoader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$"),
+    list("-+0123456789."))
+
+
 def load_yaml(path: str | Path) -> dict:
-    with open(path, encoding="utf-8") as fh:
-        return yaml.safe_load(fh) or {}
+    """A YAML mapping from ``path``; :class:`ConfigError` with file, line and column for a
+    syntax error or a duplicate key, and for a file that is not a mapping."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = yaml.load(fh, Loader=_StrictLoader)
+    except yaml.MarkedYAMLError as error:
+        mark = error.problem_mark or error.context_mark
+        where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)
+        raise ConfigError(f"{where}: {error.problem or error.context} (YAML syntax; tabs are not "
+                          "allowed for indentation)") from None
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise ConfigError(f"{path}: a configuration file must be a mapping of keys, not "
+                          f"{type(data).__name__}")
+    return data
 
 
 def _fill_defaults(instance: Any, schema: dict) -> None:
@@ -74,6 +116,10 @@ def _key(path) -> str:
 
 def _describe(error: jsonschema.ValidationError) -> str:
     path = list(error.absolute_path)
+    if isinstance(error.instance, str) and _is_number(error.instance):
+        return (f"config key '{_key(path)}': {error.instance!r} is a string, not a number "
+                "(YAML 1.1 reads a number like 1e-9 as text: write 1.0e-9); must be "
+                f"{_allowed(error.schema)}")
     if error.validator == "required":
         missing = error.message.split("'")[1]
         sub = error.schema.get("properties", {}).get(missing, {})
@@ -85,6 +131,25 @@ def _describe(error: jsonschema.ValidationError) -> str:
                 f"allowed keys: {allowed}")
     return (f"config key '{_key(path)}': {error.instance!r} is not allowed; "
             f"must be {_allowed(error.schema)}")
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _non_finite(config, path=()) -> list[str]:
+    """Every NaN or infinite number in the configuration (JSON Schema bounds never reject NaN)."""
+    if isinstance(config, dict):
+        return [p for k, v in config.items() for p in _non_finite(v, path + (k,))]
+    if isinstance(config, list):
+        return [p for i, v in enumerate(config) for p in _non_finite(v, path + (str(i),))]
+    if isinstance(config, float) and not math.isfinite(config):
+        return [f"config key '{_key(path)}': {config!r} is not allowed; must be a finite number"]
+    return []
 
 
 def _lookup(config: dict, dotted: str):
@@ -120,12 +185,20 @@ def _check_extensions(config, schema: dict, root: dict, path=()) -> list[str]:
     if schema.get("x-ordered"):
         problem = _ordered_problem(config, _key(path))
         problems += [problem] if problem else []
-    if "x-at-most" in schema:
-        other = _lookup(root["__config__"], schema["x-at-most"])
-        if not config <= other:
-            problems.append(f"config key '{_key(path)}': {config!r} must be <= "
-                            f"'{schema['x-at-most']}' = {other!r}")
+    for word, holds, relation in (("x-at-most", lambda a, b: a <= b, "<="),
+                                  ("x-below", lambda a, b: a < b, "<")):
+        if word in schema:
+            other = _lookup(root["__config__"], schema[word])
+            largest = max(config) if isinstance(config, list) else config
+            if not holds(largest, other):
+                problems.append(f"config key '{_key(path)}': {config!r} must be {relation} "
+                                f"'{schema[word]}' = {other!r}")
     if isinstance(config, dict):
+        points = math.prod(v["n"] for v in config.values()
+                           if isinstance(v, dict) and {"min", "max", "n"} <= set(v))
+        if points > root.get("x-max-grid-points", math.inf):
+            problems.append(f"config key '{_key(path)}': its grids have {points} points in all; "
+                            f"at most {root['x-max-grid-points']} are allowed")
         for key, value in config.items():
             if key.endswith("_min") and key[:-4] + "_max" in config:
                 if not value < config[key[:-4] + "_max"]:
@@ -142,6 +215,13 @@ def _check_extensions(config, schema: dict, root: dict, path=()) -> list[str]:
     return problems
 
 
+#: JSON Schema validator whose "integer" is an int (401.0 is not an integer here).
+_Validator = jsonschema.validators.extend(
+    jsonschema.Draft202012Validator,
+    type_checker=jsonschema.Draft202012Validator.TYPE_CHECKER.redefine(
+        "integer", lambda _, value: isinstance(value, int) and not isinstance(value, bool)))
+
+
 def validate_config(config: dict, schema: dict) -> dict:
     """Return a validated copy of ``config`` with the schema's defaults filled in.
 
@@ -149,9 +229,9 @@ def validate_config(config: dict, schema: dict) -> dict:
     """
     filled = copy.deepcopy(config)
     _fill_defaults(filled, schema)
-    validator = jsonschema.Draft202012Validator(schema)
-    errors = sorted(validator.iter_errors(filled), key=lambda e: list(map(str, e.absolute_path)))
-    messages = [_describe(e) for e in errors]
+    errors = sorted(_Validator(schema).iter_errors(filled),
+                    key=lambda e: list(map(str, e.absolute_path)))
+    messages = _non_finite(filled) + [_describe(e) for e in errors]
     if not messages:
         messages = _check_extensions(filled, schema, {**schema, "__config__": filled})
     if messages:

@@ -4,16 +4,21 @@ Each file carries CF-1.11 and ACDD-1.3 global attributes, ``long_name`` and ``un
 variable and coordinate, and its provenance (git commit and dirty flag, hash and canonical text
 of the configuration, package versions, rule, seed).  Files are deterministic: the same data and
 provenance give byte-identical files (no wall-clock time is written; the date, if any, comes from
-``SOURCE_DATE_EPOCH``).
+``SOURCE_DATE_EPOCH``).  Every numeric data variable carries the SHA-256 of its values
+(``sha256``), and :func:`read_dataset` checks it: a dataset damaged or edited after its rule
+wrote it (say, a variable overwritten with NaN) stops the reading job with an error that names
+the file, the variable and the rule to rerun.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from rotorvib.io.config import canonical_json, config_hash
@@ -57,6 +62,32 @@ def _date_attrs() -> dict:
     return {"date_created": stamp}
 
 
+class DatasetError(ValueError):
+    """A dataset cannot be read, or is not what its rule wrote."""
+
+
+def values_sha256(values) -> str:
+    """SHA-256 of an array's values (C order, native dtype)."""
+    return hashlib.sha256(np.ascontiguousarray(values).tobytes()).hexdigest()
+
+
+def read_dataset(path: str | Path) -> xr.Dataset:
+    """Load a dataset written by :func:`write_dataset` into memory, checking that it opens and
+    that every numeric data variable still has the values its rule wrote."""
+    try:
+        ds = xr.load_dataset(path)
+    except (OSError, ValueError, RuntimeError) as error:
+        raise DatasetError(f"{path} cannot be read ({error}); delete it and rerun snakemake to "
+                           "rebuild it") from None
+    rule = ds.attrs.get("provenance_rule", "?")
+    for name, var in ds.data_vars.items():
+        expected = var.attrs.get("sha256")
+        if expected is not None and values_sha256(var.values) != expected:
+            raise DatasetError(f"{path}: variable {name!r} is not what rule {rule!r} wrote (its "
+                               f"values changed since); rerun it: snakemake --forcerun {rule}")
+    return ds
+
+
 def check_metadata(ds: xr.Dataset) -> None:
     """Raise ``ValueError`` if a variable lacks ``long_name``, or a numeric one ``units``."""
     missing = [f"{name}.{attr}" for name, var in ds.variables.items()
@@ -88,6 +119,9 @@ def write_dataset(ds: xr.Dataset, path: str | Path, provenance: Provenance) -> P
         **ds.attrs,
         **provenance.attrs(),
     }
+    for var in out.data_vars.values():
+        if var.dtype.kind in "fiuc":
+            var.attrs["sha256"] = values_sha256(var.values)
     encoding = {}
     for name, var in out.variables.items():
         if name in out.coords or var.dtype.kind not in "fiuc":

@@ -12,6 +12,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from rotorvib.models.checks import require
+
 #: Order of the eight design variables of the dual absorber (paper C, section 4).
 DUAL_NAMES = ("m1", "m2", "k1", "k2", "c1", "c2", "d1", "d2")
 
@@ -27,6 +29,9 @@ class Rotor:
     k_t: float
     Gamma0: float
     J_factor: float = 0.5
+
+    def __post_init__(self):
+        require(self, ("M", "R", "k_t", "Gamma0", "J_factor"), ())
 
     @property
     def J(self) -> float:
@@ -47,6 +52,9 @@ class AbsorberSet:
     k: float
     c: float
     d: float
+
+    def __post_init__(self):
+        require(self, ("m", "d"), ("k", "c"))
 
     @property
     def omega_a(self) -> float:

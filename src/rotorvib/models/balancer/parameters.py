@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorvib.models.checks import require
+
 from rotorvib.models.balancer import engine
 
 
@@ -45,6 +47,11 @@ class Balancer:
     c: float
     D: float
     n: int = 2
+
+    def __post_init__(self):
+        require(self, positive=("M", "m", "R", "k"), nonnegative=("eps", "c", "D"))
+        if int(self.n) != self.n or self.n < 2:
+            raise ValueError(f"Balancer.n = {self.n!r}: must be an integer >= 2")
 
     @classmethod
     def from_paper_b(cls, *, M, k, R, m_bar, eps_bar, zeta, beta, n=2) -> "Balancer":

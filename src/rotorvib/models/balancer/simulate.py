@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorvib.methods.integrate import IntegrationError
+from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
@@ -38,6 +38,15 @@ class BalanceCriterion:
     f_threshold: float
     t_end: float
     sample_dt: float
+
+    def __post_init__(self):
+        for name in ("r_threshold", "f_threshold", "t_end", "sample_dt"):
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value > 0):
+                raise ValueError(f"{name} = {value!r}: must be a finite number > 0")
+        if self.sample_dt > self.t_end:
+            raise ValueError(f"sample_dt = {self.sample_dt!r}: must not exceed t_end = "
+                             f"{self.t_end!r}")
 
     @classmethod
     def from_config(cls, balance: dict, k: float) -> "BalanceCriterion":
@@ -114,6 +123,16 @@ class Trajectory:
         return k * r + c * rdot
 
 
+def _check_inputs(p, y0, rtol, atol) -> None:
+    """``ValueError`` for tolerances out of range or a non-finite parameter or state."""
+    check_tolerances(rtol, atol)
+    for name, values in (("p", p), ("y0", y0)):
+        bad = np.flatnonzero(~np.isfinite(np.asarray(values, float)).reshape(len(values), -1)
+                             .all(axis=-1))
+        if bad.size:
+            raise ValueError(f"{name}: non-finite entries in row(s)/index(es) {bad[:10].tolist()}")
+
+
 def _raise_on_failure(m):
     status = int(metric(m, "status"))
     if status != engine.OK:
@@ -125,6 +144,7 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
         rtol: float = RTOL, atol: float = ATOL, store: bool = False):
     """Integrate one run from t = 0 to ``criterion.t_end``; return a :class:`Trajectory`
     (``store=True``) or a :class:`RunResult`."""
+    _check_inputs(p, y0, rtol, atol)
     c = criterion
     out = np.empty((c.n_samples if store else 0, len(y0)))
     m = engine.integrate(form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end),
@@ -142,7 +162,16 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
     """Paper B's balancer from rest relative to the disk, C at ``(r0, theta0)``, balls at
     ``phi0`` (rad) (eq. 36).  The force threshold defaults to ``k r_threshold`` (the force of
     the balance criterion).  Returns a :class:`RunResult`, or a :class:`Trajectory` with
-    ``store=True``."""
+    ``store=True``.  Raises ``ValueError`` naming a non-finite parameter of ``b`` or
+    ``profile``, a criterion out of range or tolerances below double precision."""
+    for obj in (b, profile):
+        for name, value in vars(obj).items():
+            if isinstance(value, float) and not np.isfinite(value):
+                raise ValueError(f"{type(obj).__name__}.{name} = {value!r}: must be finite")
+    for name, value in (("r0", r0), ("theta0", theta0), *(
+            (f"phi0[{i}]", v) for i, v in enumerate(np.atleast_1d(phi0)))):
+        if not np.isfinite(value):
+            raise ValueError(f"{name} = {value!r}: must be finite")
     y0 = fixed_state(b.n, r0=r0, theta0=theta0, phi0=phi0)
     criterion = BalanceCriterion(r_threshold=r_threshold, t_end=t_end, sample_dt=sample_dt,
                                  f_threshold=b.k * r_threshold if f_threshold is None
@@ -164,6 +193,7 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     c = criterion
     params = np.ascontiguousarray(params, dtype=float)
     y0s = np.ascontiguousarray(y0s, dtype=float)
+    _check_inputs(params, y0s, rtol, atol)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
     result = np.empty((n, engine.N_METRICS))

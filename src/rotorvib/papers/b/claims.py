@@ -92,7 +92,7 @@ def kinematics_note(beta: xr.Dataset, mass: xr.Dataset, t1: xr.Dataset, forces: 
         add(f"best mass (kg, mean over ICs), eps_bar = {eps:g}",
             [_argmin_axis(mean_over_ics(pick(mass, kinematics=k).balance_time.isel(eps_bar=eps_i))
                           .values, mass.mass.values) for k in kins])
-    add("median balance time over the beta grid (s)",
+    add("median balance time over the balanced runs of the beta grid (s; censored runs below)",
         [float(np.nanmedian(pick(beta, kinematics=k).balance_time)) for k in kins])
     add("censored runs on the beta and mass grids",
         [int((pick(beta, kinematics=k).balanced == 0).sum() + (pick(mass, kinematics=k).balanced
@@ -181,14 +181,16 @@ def ga_rows(ga: xr.Dataset, kin: str, bounds: dict, band) -> list[Reproduced]:
         for j, ic in enumerate(g.ic_name.values):
             beta, m = float(g.beta_opt[i, j]), float(g.mass_opt[i, j])
             t = float(g.balance_time_opt[i, j])
+            time_text = ("not balanced by t_end: censored" if int(g.censored[i, j])
+                         else f"balance time {t:.2f} s")
             tag = f"{_eps_id(eps)}_{str(ic)[-1]}"
             rows.append(_claim(f"ga_beta_opt_{tag}", band[0] - 1e-9 <= beta <= band[1] + 1e-9,
                              f"GA optimum beta = "
-                             f"{beta:.3f} (m = {1e3 * m:.2f} g, balance time {t:.2f} s)"))
+                             f"{beta:.3f} (m = {1e3 * m:.2f} g, {time_text})"))
             at_bound = np.isclose(m, bounds["mass"][0], rtol=1e-3)
             rows.append(_row(f"ga_m_opt_{tag}", m,
                              f"GA optimum mass {'at the lower bound' if at_bound else 'inside the bounds'}"
-                             f" (beta = {beta:.3f}, balance time {t:.2f} s); a GA of population "
+                             f" (beta = {beta:.3f}, {time_text}); a GA of population "
                              f"{ga.attrs['summary'].split('population ')[1].split(',')[0]} and "
                              "few generations samples the plane coarsely"))
     return rows

@@ -59,6 +59,9 @@ def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, ma
          "mass_opt": (dims, x_opt[..., 1], {"long_name": "optimum ball mass", "units": "kg"}),
          "balance_time_opt": (dims, f_opt, {"long_name": "balance time at the optimum "
                                                          "(penalised if censored)", "units": "s"}),
+         "censored": (dims, (f_opt >= setup.criterion.t_end).astype(np.int8),
+                      {"long_name": "1 if even the optimum did not balance by t_end (its "
+                                    "balance_time_opt is the penalty, not a time)", "units": "1"}),
          "n_evaluations": (dims, n_eval, {"long_name": "balance-time evaluations (runs) of the "
                                                        "GA", "units": "1"}),
          "best_balance_time": (dims + ("generation",), history,

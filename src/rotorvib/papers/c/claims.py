@@ -135,8 +135,8 @@ def frequency_rows(fr: xr.Dataset, claims: dict) -> list[Reproduced]:
     zero_at = w[np.argmin(D_u)]
     D1 = {name: float(np.interp(1.0, w, fr[name].values)) for name in ("D_table2_undamped",
                                                                         "D_table2", "D_ga")}
-    peak = {str(d): (float(fr.peak_w.sel(design=d)), float(fr.peak_D.sel(design=d)))
-            for d in fr.design.values}
+    peak = {d: (float(pick(fr, design=d).peak_w), float(pick(fr, design=d).peak_D))
+            for d in labels(fr, "design")}
     outside = peak["ga"][0] < w[0] or peak["ga"][0] > w[-1]
     undamped = ("undamped natural frequency of Table 2 (eigenvalue of K, M), where D is "
                 "unbounded; the plotted curve's sampled maximum {:.4g} is only where the grid "

@@ -12,6 +12,7 @@ from dataclasses import replace
 import numpy as np
 import xarray as xr
 
+from rotorvib.io.coords import label_coord
 from rotorvib.methods.ga import GAResult
 from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
                                                          dimensionless_amplitude,
@@ -134,8 +135,8 @@ def frequency_response_dataset(rotor: Rotor, table2, x_opt, w) -> xr.Dataset:
                           {"long_name": "steady amplitude of absorber set 2, Table 2", "units": "m"}),
         },
         coords={"w": ("w", np.asarray(w, float), _W),
-                "design": ("design", np.array(["table2", "ga"]),
-                           {"long_name": "damped design: Table 2 or the GA optimum"})},
+                **label_coord("design", ["table2", "ga"],
+                              "damped design: Table 2 or the GA optimum")},
         attrs={"title": "Paper C: frequency response of the rotor with and without absorbers",
                "summary": "D(w) of eq. (20) for no absorber, Table 2, Table 2 undamped and the "
                           "GA optimum (Fig 5)",

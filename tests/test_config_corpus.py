@@ -1,0 +1,160 @@
+"""A corpus of malformed configurations: every case is rejected before any job, by a message
+that names the offending key (the checks ``workflow/rules/common.smk`` and ``paper_b.smk`` run
+before the DAG is built)."""
+
+import copy
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from rotorvib.io.config import ConfigError, load_yaml, validate_config
+from rotorvib.papers.b.setup import existence_problems, study_problem
+
+ROOT = Path(__file__).resolve().parents[1]
+SCHEMA = load_yaml(ROOT / "config/schema.yaml")
+CONFIG = load_yaml(ROOT / "config/config.yaml")
+NAN, INF = math.nan, math.inf
+RANGE_DOWN = {"min": 3.0, "max": 0.5, "n": 10}
+DUPLICATE_KEY = "paper_b:\n  machine:\n    zeta: 0.01\n    zeta: 0.02\n"
+
+#: (dotted key, bad value, the key the message must name)
+CASES = [
+    # paper C
+    ("paper_c.rotor.M", -1.0, None), ("paper_c.rotor.M", NAN, None),
+    ("paper_c.rotor.R", INF, None), ("paper_c.rotor.k_t", 0, None),
+    ("paper_c.rotor.Gamma0", "5", None), ("paper_c.rotor.J_factor", 2.0, None),
+    ("paper_c.rotor.extra", 1.0, "paper_c.rotor"), ("paper_c.table2.m1", -0.1, None),
+    ("paper_c.table2.d2", NAN, None), ("paper_c.bounds.m", [0.5, 0.05], None),
+    ("paper_c.bounds.k", [1e4], None), ("paper_c.bounds.c", [5.0, NAN], "paper_c.bounds.c.1"),
+    ("paper_c.ga.pop_size", 200.0, None), ("paper_c.ga.n_gen", 0, None),
+    ("paper_c.ga.seed", "x", None), ("paper_c.frequency_response.w_min", 1.5, None),
+    ("paper_c.frequency_response.n_points", 2401.5, None),
+    ("paper_c.frequency_response.w_max", INF, None), ("paper_c.mass_ratio_family.mu", [], None),
+    ("paper_c.mass_ratio_family.constructions", ["bogus"], "paper_c.mass_ratio_family.constructions.0"),
+    ("paper_c.den_hartog.d", -0.1, None), ("paper_c.time_response.t_end", 0, None),
+    ("paper_c.time_response.rtol", 1e-16, None),
+    ("paper_c.time_response.samples_per_period", 4, None),
+    ("paper_c.claims.fig3_time", 5.0, None), ("paper_c.claims.close_tolerance", 2.0, None),
+    ("paper_c.distance_study.offsets", [0.0], None),
+    ("paper_c.distance_study.offsets", [0.0, 0.0], None),
+    # paper B
+    ("paper_b.machine.M", 0, None), ("paper_b.machine.n", 2.0, None),
+    ("paper_b.machine.n", 3, None), ("paper_b.machine.zeta", NAN, None),
+    ("paper_b.machine.R", 11.0, None), ("paper_b.initial_state.r0", INF, None),
+    ("paper_b.initial_conditions.IC1", [40.0], None),
+    ("paper_b.initial_conditions.IC2", [400.0, 0.0], "paper_b.initial_conditions.IC2.0"),
+    ("paper_b.speed.omega", -200.0, None), ("paper_b.speed.t_ramp", 30.0, None),
+    ("paper_b.kinematics", ["wrong"], "paper_b.kinematics.0"),
+    ("paper_b.balance.r_threshold", NAN, None), ("paper_b.balance.sample_dt", 0, None),
+    ("paper_b.balance.t_end", -1.0, None), ("paper_b.marginal_growth", 0.5, None),
+    ("paper_b.stability_maps.fig2.beta", {"min": 3.0, "max": 1.0, "n": 10}, None),
+    ("paper_b.stability_maps.fig2.omega_bar.n", 100000, "paper_b.stability_maps.fig2"),
+    ("paper_b.stability_maps.fig3.m_bar.n", 0, None),
+    ("paper_b.stability_maps.fig3.beta", NAN, None),
+    ("paper_b.time_responses.fig7.phi0", [45.0], None),
+    ("paper_b.time_responses.fig7.m_bar", 0.001, None),
+    ("paper_b.time_responses.fig15.masses", [0.001, 0.01], None),
+    ("paper_b.time_responses.fig11.ic", "IC9", None),
+    ("paper_b.balance_studies.beta.axis", "foo", None),
+    ("paper_b.balance_studies.beta.range.n", 2.5, None),
+    ("paper_b.balance_studies.mass.range.min", 0.001, "paper_b.balance_studies.mass"),
+    ("paper_b.balance_studies.beta.fixed", {}, "paper_b.balance_studies.beta"),
+    ("paper_b.ga.pop_size", 1, None), ("paper_b.ga.mass", [0.001, 0.02], None),
+    ("paper_b.ga.beta", [1.0, 0.1], None), ("paper_b.ga.censored_penalty", 0.5, None),
+    ("paper_b.ga.eps_bar", [NAN], "paper_b.ga.eps_bar.0"), ("paper_b.table1.speeds", [], None),
+    ("paper_b.table1.mass.min", 0.003, None),
+    ("paper_b.table2.cases", [[1.0, 0.001]], "paper_b.table2.cases.0"),
+    ("paper_b.table2.ic", "IC4", None), ("paper_b.calibration.R.n", 1.0, None),
+    ("paper_b.basin.n", 1000, None),
+    ("paper_b.basin.cases", [[0.2, 0.001]], "paper_b.basin.cases.0"),
+    ("paper_b.claims.beta_opt_range", [0.2, 0.1], None),
+    # paper A
+    ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),
+    ("paper_a.tau_step", 200.0, None), ("paper_a.zoom", [0.0, 500.0], None),
+    ("paper_a.zoom", [20.0, 0.0], None), ("paper_a.rk.rtol", 1e-16, None),
+    ("paper_a.rk.rtol", "1e-9", None), ("paper_a.error_study.deltas", [0.01, 0.01], None),
+    ("paper_a.fig7.beta.n", 1.0e7, None), ("paper_a.fig5_6.betas", [-1.0], "paper_a.fig5_6.betas.0"),
+    ("paper_a.slow_flow.omega", RANGE_DOWN, None),
+    # discrepancy analysis
+    ("discrepancies.inversion.range", [10.0, 0.1], None),
+    ("discrepancies.inversion.n_scan", 1, None),
+    ("discrepancies.paper_b", ["bogus"], "discrepancies.paper_b.0"),
+    ("discrepancies.paper_c", ["M", "M"], None),
+]
+
+
+def _set(config: dict, dotted: str, value) -> dict:
+    out = copy.deepcopy(config)
+    node, *parts = [out, *dotted.split(".")]
+    for part in parts[:-1]:
+        node = node[int(part)] if isinstance(node, list) else node[part]
+    node[parts[-1]] = value
+    return out
+
+
+def problems(config: dict) -> str:
+    """The messages of the checks run before any job: the schema and its extensions, then
+    paper B's study and existence rules."""
+    try:
+        filled = validate_config(config, SCHEMA)
+    except ConfigError as error:
+        return str(error)
+    b = filled["paper_b"]
+    studies = [f"'paper_b.balance_studies.{name}': {p}" for name, s in
+               b["balance_studies"].items() if (p := study_problem(s))]
+    return "\n".join(studies + existence_problems(b))
+
+
+def test_the_paper_configuration_passes():
+    assert problems(CONFIG) == ""
+
+
+def test_the_corpus_is_large_and_covers_every_section():
+    assert len(CASES) >= 70
+    assert {key.split(".")[1] for key, _, _ in CASES if key.startswith("paper_")} >= set(
+        CONFIG["paper_b"]) - {"n", "initial_state"} | set(CONFIG["paper_c"]) - {"n"}
+
+
+@pytest.mark.parametrize("key, value, named", CASES, ids=[f"{k}={v!r}" for k, v, _ in CASES])
+def test_every_malformed_config_is_rejected_naming_its_key(key, value, named):
+    message = problems(_set(CONFIG, key, value))
+    assert f"'{named or key}'" in message, message
+
+
+@pytest.mark.parametrize("text, expected", [
+    (DUPLICATE_KEY, ":4:5: duplicate key 'zeta'"),
+    ("paper_b:\n  machine:\n\tzeta: 0.01\n", ":3:1: found character '\\t'"),
+    ("paper_b: [1, 2\n", ":2:1:"),
+    ("- 1\n- 2\n", "must be a mapping of keys, not list"),
+])
+def test_yaml_errors_name_file_line_and_column(tmp_path, text, expected):
+    path = tmp_path / "bad.yaml"
+    path.write_text(text)
+    with pytest.raises(ConfigError) as error:
+        load_yaml(path)
+    assert str(path) in str(error.value) and expected in str(error.value)
+
+
+def test_exponent_notation_is_a_number(tmp_path):
+    path = tmp_path / "exp.yaml"
+    path.write_text("paper_a:\n  rk: {rtol: 1e-9, atol: -2E+3}\n")
+    assert load_yaml(path) == {"paper_a": {"rk": {"rtol": 1e-9, "atol": -2000.0}}}
+
+
+@pytest.mark.parametrize("text, named", [
+    (DUPLICATE_KEY, "duplicate key 'zeta'"),
+    ("paper_b:\n  balance:\n    r_threshold: .nan\n", "'paper_b.balance.r_threshold'"),
+    ("paper_b:\n  ga:\n    mass: [0.001, 0.02]\n", "'paper_b.ga.mass'"),
+])
+def test_snakemake_stops_before_any_job(tmp_path, text, named):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(text)
+    run = subprocess.run([str(Path(sys.executable).parent / "snakemake"), "-n", "--configfile",
+                          "config/config.yaml", str(bad)], cwd=ROOT, capture_output=True,
+                         text=True)
+    assert run.returncode != 0
+    assert named in run.stdout + run.stderr
+    assert "Job " not in run.stdout
