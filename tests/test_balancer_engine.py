@@ -10,7 +10,8 @@ from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedP
                                                  fixed_parameters, fixed_state, rotating_parameters)
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
 from rotorvib.methods.integrate import IntegrationError
-from rotorvib.models.balancer.simulate import BalanceCriterion, check_batch, run, run_batch
+from rotorvib.models.balancer.simulate import (MAX_STEPS, BalanceCriterion, check_batch, run,
+                                               run_batch)
 
 R_THR, F_THR = 1e-4, 1.0
 
@@ -151,9 +152,13 @@ def test_failures_are_reported():
     p = fixed_parameters(b, SpeedProfile(200.0, "constant"))
     p_bad = p.copy()
     p_bad[0] = np.nan
-    with pytest.raises(IntegrationError):
+    # the public entry points refuse the bad input before integrating ...
+    with pytest.raises(ValueError, match="p: non-finite"):
         run(engine.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
-    metrics = run_batch(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]), BalanceCriterion(R_THR, F_THR, 0.5, 1e-3), progress=False)
+    # ... and the engine itself flags a failed run in its batch instead of returning numbers
+    metrics = engine.integrate_batch(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]),
+                                     0.5, 1e-8, 1e-11, 1e-3, R_THR, F_THR, MAX_STEPS,
+                                     np.arange(2))
     assert metrics[0, 0] == engine.OK and metrics[1, 0] != engine.OK
     with pytest.raises(IntegrationError, match="1 of 2"):
         check_batch(metrics)

@@ -6,7 +6,8 @@ from rotorvib.io.config import ConfigError, load_yaml, validate_config
 from rotorvib.io.fingerprint import code_fingerprint
 
 try:
-    for _path in workflow.configfiles:  # Snakemake's own loader keeps a duplicate key's last value
+    # Snakemake's own loader keeps a duplicate key's last value: read each file strictly too.
+    for _path in workflow.configfiles:
         load_yaml(_path)
     config.update(validate_config(config, load_yaml("config/schema.yaml")))
 except ConfigError as error:
