@@ -26,5 +26,7 @@ rule all:
         all_results(),
 
 
-# Every script rule's `code` parameter: the fingerprint of the library code it runs.
+# Every script rule's `code` parameter: the fingerprint of the library code it runs; then the
+# configuration hash each of its input datasets must carry.
 add_code_fingerprints(workflow.rules)
+add_input_checks(workflow.rules)

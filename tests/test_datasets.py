@@ -7,7 +7,9 @@ import pytest
 import xarray as xr
 
 from conftest import cf_check
-from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
+from rotorvib.io.config import config_hash
+from rotorvib.io.datasets import (INPUTS_CONFIG_PARAM, DatasetError, Provenance, job_config,
+                                   read_dataset, write_dataset)
 
 
 def _dataset():
@@ -73,3 +75,16 @@ def test_a_truncated_dataset_says_how_to_rebuild_it(tmp_path):
     path.write_bytes(path.read_bytes()[:200])
     with pytest.raises(DatasetError, match="cannot be read.*rerun snakemake"):
         read_dataset(path)
+
+
+def test_a_dataset_from_another_configuration_is_refused(tmp_path):
+    """The reader passes the hash of the configuration it expects the producer to have used;
+    the hash is that of the producer's parameters less the input check (job_config)."""
+    made = {"grid": [0.7, 1.3], INPUTS_CONFIG_PARAM: {"x.nc": "ignored"}}
+    path = write_dataset(_dataset(), tmp_path / "a.nc", Provenance("c_mass_ratio", job_config(made)))
+    same = config_hash({"grid": [0.7, 1.3]})
+    assert read_dataset(path, {str(path): same}).D.size == 11
+    assert read_dataset(path, {"other.nc": "0" * 64}).D.size == 11    # not an input checked
+    with pytest.raises(DatasetError, match=r"made by rule 'c_mass_ratio' under another "
+                                           r"configuration.*snakemake --forcerun c_mass_ratio"):
+        read_dataset(path, {str(path): config_hash({"grid": [0.7, 1.4]})})

@@ -8,6 +8,7 @@ the SLURM profile, all through the Snakemake command line as a user would run it
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -15,6 +16,8 @@ import tarfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import netCDF4
+import numpy as np
 import pytest
 
 from conftest import ROOT, cf_check
@@ -42,13 +45,13 @@ def _copy_repository(dest: Path) -> Path:
     return dest
 
 
-def snakemake(cwd: Path, *args, check=True) -> subprocess.CompletedProcess:
-    """Run Snakemake in ``cwd`` with its own ``src`` first on the path; every script job
-    records what it loaded into ``cwd/job_records`` (tests/oracles/job_recorder)."""
+def snakemake(cwd: Path, *args, check=True, env=None, timeout=None) -> subprocess.CompletedProcess:
+    """Run Snakemake in ``cwd`` with its own ``src`` first on the path (and ``env`` added); every
+    script job records what it loaded into ``cwd/job_records`` (tests/oracles/job_recorder)."""
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(cwd / "src"), str(RECORDER)]),
-           "ROTORVIB_JOB_RECORDS": str(cwd / RECORDS)}
+           "ROTORVIB_JOB_RECORDS": str(cwd / RECORDS), **(env or {})}
     run = subprocess.run([str(BIN / "snakemake"), *args], cwd=cwd, capture_output=True,
-                         text=True, env=env)
+                         text=True, env=env, timeout=timeout)
     if check and run.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{run.stdout}\n{run.stderr}")
     return run
@@ -240,6 +243,40 @@ def test_malformed_config_stops_before_any_job(run_dir, tmp_path):
     assert "rule c_" not in text
 
 
+def _figure_job_error(work: Path, *args) -> str:
+    """Force the Fig 6 job of paper C alone; return its log (it must fail)."""
+    run = snakemake(work, "-j1", "-f", "results/paper_c/figures/fig6.png", *REDUCED, *args,
+                    check=False)
+    assert run.returncode != 0, run.stdout
+    return (work / "results/logs/figure_c_fig6.log").read_text()
+
+
+def test_a_nan_poisoned_dataset_stops_the_downstream_rule(run_dir, tmp_path):
+    """A valid netCDF whose values were overwritten with NaN after its rule wrote it never reaches
+    a figure: the reading job stops, naming the file, the variable and the rule to rerun."""
+    work = _copy_run(run_dir, tmp_path / "work")
+    path = work / "results/paper_c/datasets/mass_ratio.nc"
+    with netCDF4.Dataset(path, "a") as nc:
+        nc["D"][0, 0, :] = np.nan
+    log = _figure_job_error(work)
+    assert ("results/paper_c/datasets/mass_ratio.nc: variable 'D' is not what rule "
+            "'c_mass_ratio' wrote") in log
+    assert "snakemake --forcerun c_mass_ratio" in log
+    assert not (work / "results/paper_c/figures/fig6.png").exists()
+
+
+def test_a_dataset_made_under_another_configuration_is_refused(run_dir, tmp_path):
+    """With Snakemake told to ignore changed parameters (``--rerun-triggers mtime``), a dataset
+    made under the old configuration is still refused by the job that reads it."""
+    work = _copy_run(run_dir, tmp_path / "work")
+    change = tmp_path / "change.yaml"
+    change.write_text("paper_c:\n  mass_ratio_family:\n    mu: [0.5, 1.0]\n")
+    log = _figure_job_error(work, str(change), "--rerun-triggers", "mtime")
+    assert ("results/paper_c/datasets/mass_ratio.nc was made by rule 'c_mass_ratio' under "
+            "another configuration") in log
+    assert not (work / "results/paper_c/figures/fig6.png").exists()
+
+
 def test_report_contains_every_figure(run_dir):
     snakemake(run_dir, "--report", "results/report.html", *REDUCED)
     html = (run_dir / "results/report.html").read_text(errors="replace")
@@ -259,9 +296,53 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
     assert planned_jobs(snakemake(fresh, "-n", *REDUCED)) == set()
 
 
-def test_slurm_profile_parses(run_dir):
-    run = snakemake(run_dir, "-n", "-F", "--workflow-profile", "workflow/profiles/slurm", *REDUCED)
-    assert "c_ga" in planned_jobs(run)
+CLUSTER = ROOT / "workflow/cluster/one-node-slurm"
+
+
+@pytest.fixture(scope="module")
+def slurm_cluster(tmp_path_factory):
+    """A one-node SLURM cluster without accounting (workflow/cluster/one-node-slurm), stopped
+    afterwards; the test skips, with the script's reason, only where SLURM cannot be set up."""
+    where = tmp_path_factory.mktemp("slurm")
+    start = subprocess.run([str(CLUSTER), "start", str(where)], capture_output=True, text=True,
+                           timeout=600)
+    if start.returncode == 77:
+        pytest.skip(start.stderr.strip())
+    assert start.returncode == 0, start.stderr
+    try:
+        yield {"SLURM_CONF": str(where / "slurm.conf")}
+    finally:
+        subprocess.run([str(CLUSTER), "stop", str(where)], timeout=120)
+
+
+# One dataset of each paper; b_balance_study is a two-thread job.
+CLUSTER_JOBS = {"a_stability": "results/paper_a/datasets/stability.nc",
+                "b_balance_study": "results/paper_b/datasets/balance_eps_bar.nc",
+                "c_mass_ratio": "results/paper_c/datasets/mass_ratio.nc"}
+
+
+def test_the_shipped_slurm_profile_runs_on_a_real_cluster(run_dir, tmp_path, slurm_cluster):
+    """Three datasets and the comparison are removed from a finished reduced run and rebuilt
+    through workflow/profiles/slurm as the README says: the datasets as SLURM jobs (with the
+    threads their rules declare), their figures, values and the comparison as local rules; every
+    result comes back byte-identical. A hang fails the test (15 min bound)."""
+    work = _copy_run(run_dir, tmp_path / "work")
+    before = _digests(work)
+    comparison = (work / "results/comparison.csv").read_bytes()
+    for path in [*CLUSTER_JOBS.values(), "results/comparison.csv"]:
+        (work / path).unlink()
+    run = snakemake(work, "--workflow-profile", "workflow/profiles/slurm", *REDUCED,
+                    env=slurm_cluster, timeout=900)
+    submitted = dict(re.findall(r"submitted with SLURM jobid (\d+) \(log: \S*/rule_(\w+?)/",
+                                run.stdout + run.stderr))
+    assert sorted(submitted.values()) == sorted(CLUSTER_JOBS), run.stderr
+    for job_id, rule in submitted.items():
+        record = subprocess.run(["scontrol", "show", "job", job_id], capture_output=True,
+                                text=True, env={**os.environ, **slurm_cluster}).stdout
+        assert "JobState=COMPLETED" in record, record
+        assert f"NumCPUs={2 if rule == 'b_balance_study' else 1} " in record, record
+    assert _digests(work) == before
+    assert (work / "results/comparison.csv").read_bytes() == comparison
 
 
 def test_lint_and_format_are_clean():

@@ -9,6 +9,8 @@ rule archive:
         "results/archive/rotorvib-results.tar.gz",
     log:
         logs("archive"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     message:

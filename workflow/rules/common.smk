@@ -1,8 +1,10 @@
 # Helpers shared by all rules: configuration validation (before any job), paths, the figure
 # declaration, and the code fingerprint every script rule receives.
 from snakemake.exceptions import WorkflowError
+from types import SimpleNamespace
 
-from rotorvib.io.config import ConfigError, load_yaml, validate_config
+from rotorvib.io.config import ConfigError, config_hash, load_yaml, validate_config
+from rotorvib.io.datasets import INPUTS_CONFIG_PARAM, job_config
 from rotorvib.io.fingerprint import code_fingerprint
 
 try:
@@ -102,3 +104,31 @@ def add_code_fingerprints(rules):
             )
         else:
             each.set_params(code=code_fingerprint(script, *([named] if named else [])))
+
+
+def producer_config_hash(path):
+    """SHA-256 of the configuration the rule that makes ``path`` records in it (its parameters
+    for that file's wildcards, rotorvib.io.datasets.job_config)."""
+    producer = next(each for each in workflow.rules if each.is_producer(path))
+    wildcards = SimpleNamespace(**producer.get_wildcards(path))
+    return config_hash(
+        {
+            name: value(wildcards) if callable(value) else value
+            for name, value in job_config(producer.params).items()
+        }
+    )
+
+
+def inputs_config_hashes(wildcards, input):
+    """Each input dataset's expected producer-configuration hash, checked on read: a dataset
+    made under another configuration (copied, restored, ``--touch``ed) stops the job."""
+    return {
+        path: producer_config_hash(path) for path in input if str(path).endswith(".nc")
+    }
+
+
+def add_input_checks(rules):
+    """Give every script rule the parameter rotorvib.io.datasets.INPUTS_CONFIG_PARAM."""
+    for each in rules:
+        if each.script:
+            each.set_params(**{INPUTS_CONFIG_PARAM: inputs_config_hashes})

@@ -25,6 +25,8 @@ rule comparison:
         discrepancies_md="results/discrepancies.md",
     log:
         logs("comparison"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     message:

@@ -18,6 +18,8 @@ rule figure:
         logs("figure_{paper}_{name}"),
     wildcard_constraints:
         paper="|".join(FIGURES),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     params:

@@ -118,6 +118,8 @@ rule a_reproduced_values:
         "results/paper_a/reproduced.csv",
     log:
         logs("a_reproduced_values"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     params:

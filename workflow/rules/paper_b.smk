@@ -280,6 +280,8 @@ rule b_tables:
         kinematics=table("b", "kinematics", "md"),
     log:
         logs("b_tables"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     params:
@@ -305,6 +307,8 @@ rule b_reproduced_values:
         "results/paper_b/reproduced.csv",
     log:
         logs("b_reproduced_values"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     params:

@@ -223,6 +223,8 @@ rule c_table2:
         md=table("c", "table2", "md"),
     log:
         logs("c_table2"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     message:
@@ -243,6 +245,8 @@ rule c_reproduced_values:
         "results/paper_c/reproduced.csv",
     log:
         logs("c_reproduced_values"),
+    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+    localrule: True
     conda:
         ENV
     params:

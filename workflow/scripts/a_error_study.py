@@ -2,10 +2,10 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.a.studies import error_study_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 ds = error_study_dataset(p.case, p.offset, p.study["deltas"], p.study["tau_end"], p.tau_step, p.rk)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

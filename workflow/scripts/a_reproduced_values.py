@@ -7,7 +7,8 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.a.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
-data = {name: read_dataset(path) for name, path in snakemake.input.items()
+expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
         if name != "paper_values"}
 p = snakemake.params
 rows = reproduce(**data, case_beta=p.case["beta"], window=p.zoom[1] - p.zoom[0],

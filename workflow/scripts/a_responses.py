@@ -2,11 +2,11 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.a.studies import responses_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 betas = sorted({p.case["beta"], *p.betas})
 ds = responses_dataset(p.case, p.offset, betas, p.tau_end, p.tau_step, p.rk)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -4,11 +4,11 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.a.studies import slow_flow_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 grid = {k: np.linspace(p.flow[k]["min"], p.flow[k]["max"], p.flow[k]["n"]) for k in ("beta", "omega")}
 ds = slow_flow_dataset(p.case["mu"], p.case["rho"], p.case["zeta"], grid["beta"], grid["omega"])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -4,7 +4,7 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.a.studies import stability_region_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
@@ -12,4 +12,4 @@ p = snakemake.params
 grid = {k: np.linspace(p.fig7[k]["min"], p.fig7[k]["max"], p.fig7[k]["n"]) for k in ("beta", "omega")}
 ds = stability_region_dataset(p.case["mu"], p.case["rho"], p.fig7["zetas"], grid["beta"],
                               grid["omega"])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

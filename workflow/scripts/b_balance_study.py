@@ -5,7 +5,7 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import balance_study_dataset
@@ -18,4 +18,4 @@ values = np.linspace(study["range"]["min"], study["range"]["max"], study["range"
 ds = balance_study_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, ics=p.ics,
                            axis=study["axis"], values=values, each=study.get("each"),
                            fixed=study["fixed"], where=study["where"])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -2,7 +2,7 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import basin_dataset
@@ -12,4 +12,4 @@ use_threads(snakemake.threads)
 p = snakemake.params
 ds = basin_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=p.basin["cases"],
                    n=p.basin["n"], eps_bar=p.basin["eps_bar"])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -6,7 +6,7 @@ import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.discrepancies import hypotheses, inversions, quantities
 from rotorvib.papers.b.setup import Setup, dataset_attrs
@@ -32,4 +32,4 @@ ds = to_dataset(baselines, found, inverted, dataset_attrs(
     "discrepancy analysis", "The printed numbers the reproduction misses by more than 1 %, "
     "recomputed under other definitions, kinematics and parameter slips, and the parameter "
     "values that reproduce those missed by more than 10 %", "Fig 7, Tables 1-2"))
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

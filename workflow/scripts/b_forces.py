@@ -4,7 +4,7 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import force_dataset
@@ -17,4 +17,4 @@ R_values = np.union1d(np.linspace(cal["min"], cal["max"], cal["n"]), [p.setup["m
 ds = force_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=t2["cases"],
                    R_values=R_values, speed=t2["speed"], eps_bar=t2["eps_bar"],
                    phi0_deg=p.ics[t2["ic"]])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

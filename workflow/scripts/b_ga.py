@@ -2,7 +2,7 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.optimise import ga_dataset
 from rotorvib.papers.b.setup import Setup
@@ -14,4 +14,4 @@ ga = p.ga
 ds = ga_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, eps_bars=ga["eps_bar"],
                 ics=p.ics, beta_bounds=ga["beta"], mass_bounds=ga["mass"], pop_size=ga["pop_size"],
                 n_gen=ga["n_gen"], seed=ga["seed"], censored_penalty=ga["censored_penalty"])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items()), ga["seed"]))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p), ga["seed"]))

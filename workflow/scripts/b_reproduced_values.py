@@ -7,8 +7,9 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
+expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
-data = {name: read_dataset(path) for name, path in snakemake.input.items()
+data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
         if name != "paper_values"}
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band,
                  paper_values=paper_values_of(snakemake.input.paper_values, "B"))

@@ -4,7 +4,7 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.b.stability_maps import stability_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
@@ -13,4 +13,4 @@ grid = {key: np.linspace(v["min"], v["max"], v["n"]) if isinstance(v, dict) else
         for key, v in p.map.items()}
 ds = stability_dataset(zeta=p.zeta, n=p.n, where=f"Fig {snakemake.wildcards.fig[3:]}",
                        marginal=p.marginal, **grid)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

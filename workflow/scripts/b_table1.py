@@ -4,7 +4,7 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import table1_dataset
@@ -16,4 +16,4 @@ t1 = p.table1
 masses = np.linspace(t1["mass"]["min"], t1["mass"]["max"], t1["mass"]["n"])
 ds = table1_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, speeds=t1["speeds"],
                     ics=p.ics, beta=t1["beta"], eps_bar=t1["eps_bar"], masses=masses)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

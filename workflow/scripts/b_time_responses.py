@@ -2,7 +2,7 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.b.responses import figure_runs, time_response_dataset
 from rotorvib.papers.b.setup import Setup
 
@@ -11,4 +11,4 @@ p = snakemake.params
 setup = Setup.from_config(**p.setup)
 runs = figure_runs(p.responses, p.table2, p.ics, omega=setup.omega, M=setup.M)
 ds = time_response_dataset(setup, kinematics=p.kinematics, runs=runs)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -6,7 +6,7 @@ import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.papers.c.discrepancies import (MODELS, hypotheses, inversions,
                                              printed_determinant_ga)
 from rotorvib.papers.c.studies import REFERENCE
@@ -30,5 +30,5 @@ ds = to_dataset(baselines, found, inverted, {
                "other definitions, variants and parameter slips, and the parameter values that "
                "reproduce those missed by more than 10 %",
     "references": f"{REFERENCE}; section 4, Table 2, Fig 3"})
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items()),
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p),
                                                   p.ga["seed"]))

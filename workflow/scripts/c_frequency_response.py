@@ -4,13 +4,14 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, read_dataset, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import frequency_response_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
+expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])
-x_opt = read_dataset(snakemake.input.ga).x_opt.values
+x_opt = read_dataset(snakemake.input.ga, expected_config).x_opt.values
 ds = frequency_response_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), x_opt, w)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -2,7 +2,7 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.optimise import tune_dual_absorber
 from rotorvib.papers.c.studies import ga_dataset
@@ -20,4 +20,4 @@ def progress(generation, best):
 
 result = tune_dual_absorber(rotor, p.bounds, **p.ga, progress=progress)
 ds = ga_dataset(rotor, result, dual_absorber(**p.table2), p.bounds)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items()), p.ga["seed"]))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p), p.ga["seed"]))

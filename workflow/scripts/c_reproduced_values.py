@@ -8,9 +8,10 @@ from rotorvib.models.absorber.parameters import Rotor
 from rotorvib.papers.c.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
+expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 rotor = Rotor(**p.rotor)
-data = {name: read_dataset(snakemake.input[name]) for name in ("ga", "fr", "mr", "distance", "tr")}
+data = {name: read_dataset(snakemake.input[name], expected_config) for name in ("ga", "fr", "mr", "distance", "tr")}
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
                  paper_values=paper_values_of(snakemake.input.paper_values, "C"))
 write_reproduced(rows, snakemake.output[0])

@@ -2,7 +2,7 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.datasets import Provenance, job_config, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import time_response_dataset
 
@@ -10,4 +10,4 @@ sys.stderr = open(snakemake.log[0], "w", buffering=1)
 p = snakemake.params
 ds = time_response_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), p.den_hartog["d"],
                            **p.time)
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, dict(p.items())))
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -9,8 +9,9 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.io.plotting import save
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
+expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
-datasets = {name: read_dataset(path) for name, path in snakemake.input.items()
+datasets = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
             if name != "paper_values"}
 paper = paper_values_of(snakemake.input.paper_values, snakemake.wildcards.paper.upper())
 draw = getattr(importlib.import_module(p.module), p.function)

@@ -7,7 +7,10 @@ provenance give byte-identical files (no wall-clock time is written; the date, i
 ``SOURCE_DATE_EPOCH``).  Every numeric data variable carries the SHA-256 of its values
 (``sha256``), and :func:`read_dataset` checks it: a dataset damaged or edited after its rule
 wrote it (say, a variable overwritten with NaN) stops the reading job with an error that names
-the file, the variable and the rule to rerun.
+the file, the variable and the rule to rerun.  Given the hash of the configuration the reading job
+expects its producer to have used (the workflow passes it as the parameter
+:data:`INPUTS_CONFIG_PARAM`), it also refuses a dataset made under another configuration (copied
+in, restored from another run, or marked current with ``--touch``).
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ import xarray as xr
 from rotorvib.io.config import canonical_json, config_hash
 from rotorvib.io.provenance import git_state, package_versions
 
+INPUTS_CONFIG_PARAM = "inputs_config_sha256"
 PROJECT_URL = "https://github.com/rotorvib/rotorvib"
 LICENSE = "CC-BY-4.0 (data); MIT (code)"
 
@@ -54,6 +58,12 @@ class Provenance:
         return attrs
 
 
+def job_config(params) -> dict:
+    """The configuration a job records in its datasets: its rule's parameters (a mapping, e.g.
+    ``snakemake.params``) without the input check :data:`INPUTS_CONFIG_PARAM` itself."""
+    return {k: v for k, v in params.items() if k != INPUTS_CONFIG_PARAM}
+
+
 def _date_attrs() -> dict:
     epoch = os.environ.get("SOURCE_DATE_EPOCH")
     if epoch is None:
@@ -71,9 +81,10 @@ def values_sha256(values) -> str:
     return hashlib.sha256(np.ascontiguousarray(values).tobytes()).hexdigest()
 
 
-def read_dataset(path: str | Path) -> xr.Dataset:
-    """Load a dataset written by :func:`write_dataset` into memory, checking that it opens and
-    that every numeric data variable still has the values its rule wrote."""
+def read_dataset(path: str | Path, expected_config: dict[str, str] | None = None) -> xr.Dataset:
+    """Load a dataset written by :func:`write_dataset` into memory, checking that it opens, that
+    every numeric data variable still has the values its rule wrote and, where
+    ``expected_config[str(path)]`` is given, that its ``provenance_config_sha256`` is that hash."""
     try:
         ds = xr.load_dataset(path)
     except (OSError, ValueError, RuntimeError) as error:
@@ -85,6 +96,12 @@ def read_dataset(path: str | Path) -> xr.Dataset:
         if expected is not None and values_sha256(var.values) != expected:
             raise DatasetError(f"{path}: variable {name!r} is not what rule {rule!r} wrote (its "
                                f"values changed since); rerun it: snakemake --forcerun {rule}")
+    want = (expected_config or {}).get(str(path))
+    got = ds.attrs.get("provenance_config_sha256")
+    if want is not None and got != want:
+        raise DatasetError(f"{path} was made by rule {rule!r} under another configuration "
+                           f"(config sha256 {str(got)[:12]}…, this run expects {want[:12]}…); "
+                           f"rerun it: snakemake --forcerun {rule}")
     return ds
 
 

@@ -13,6 +13,8 @@ from pymoo.operators.crossover.sbx import SBX
 from pymoo.operators.mutation.pm import PM
 from pymoo.optimize import minimize as pymoo_minimize
 
+from rotorvib.checks import finite_array, integer
+
 
 @dataclass(frozen=True)
 class GAResult:
@@ -34,8 +36,13 @@ class _Batch(Problem):
 
     def _evaluate(self, x, out, *args, **kwargs):
         f = np.asarray(self._objective(x), dtype=float)
-        if not np.all(np.isfinite(f)):
-            raise FloatingPointError("the objective returned non-finite values")
+        if f.shape != (len(x),):
+            raise ValueError(f"objective: returned shape {f.shape} for a population of "
+                             f"{len(x)}, expected ({len(x)},)")
+        bad = ~np.isfinite(f)
+        if bad.any():
+            raise FloatingPointError(f"objective: non-finite value at {int(bad.sum())} of "
+                                     f"{len(x)} points, first x = {x[np.argmax(bad)].tolist()}")
         out["F"] = f[:, None]
 
 
@@ -62,7 +69,19 @@ def minimise(objective: Callable[[np.ndarray], np.ndarray], lower, upper, *, pop
     polynomial mutation, fitness survival) for exactly ``n_gen`` generations.
 
     Deterministic for a given ``seed``.  ``progress(generation, best_f)`` is called per generation.
+    Bad arguments (non-finite or empty box, ``lower >= upper``, non-integer sizes) raise
+    ``ValueError`` naming them; a non-finite objective value raises ``FloatingPointError``.
     """
+    lower = finite_array("lower", lower, shape=(None,))
+    upper = finite_array("upper", upper, shape=lower.shape)
+    if lower.size == 0 or np.any(lower >= upper):
+        raise ValueError(f"lower = {lower.tolist()}, upper = {upper.tolist()}: need "
+                         "lower < upper in every variable")
+    pop_size, n_gen = integer("pop_size", pop_size, 2), integer("n_gen", n_gen, 1)
+    seed = integer("seed", seed, 0)
+    for name, eta in (("sbx_eta", sbx_eta), ("pm_eta", pm_eta)):
+        if not (np.isfinite(eta) and eta > 0):
+            raise ValueError(f"{name} = {eta!r}: must be a finite number > 0")
     algorithm = GA(pop_size=pop_size, crossover=SBX(eta=sbx_eta), mutation=PM(eta=pm_eta),
                    eliminate_duplicates=True)
     history = _History(progress)

@@ -23,6 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import root
 
+from rotorvib.checks import finite_array
+
 
 @dataclass(frozen=True)
 class Resonance:
@@ -46,9 +48,12 @@ class MultipleScales:
 
     @classmethod
     def at(cls, J, T) -> "MultipleScales":
-        J, T = np.asarray(J, float), np.asarray(T, float)
+        """Decomposition at an equilibrium with Jacobian ``J`` (n x n) and quadratic tensor
+        ``T`` (n x n x n); ``ValueError`` if either is not finite or not of these shapes."""
+        n = np.shape(J)[0] if np.ndim(J) else 0
+        J = finite_array("J", J, shape=(n, n))
+        T = finite_array("T", T, shape=(n, n, n))
         lam, phi = np.linalg.eig(J)
-        n = len(lam)
         c = np.empty((n, n, n), dtype=complex)
         for j in range(n):
             for k in range(j, n):
@@ -73,14 +78,18 @@ class MultipleScales:
                     found.append(Resonance(j, k, l, float(gaps[l])))
         return found
 
+    def initial_state(self, x0) -> np.ndarray:
+        """``x0`` checked: finite, one entry per state variable."""
+        return finite_array("x0", x0, shape=(len(self.eigenvalues),))
+
     def one_term_constants(self, x0) -> np.ndarray:
         """``A`` with ``sum_j A_j phi_j = x0`` (eq. 33)."""
-        return np.linalg.solve(self.modes, np.asarray(x0, dtype=complex))
+        return np.linalg.solve(self.modes, self.initial_state(x0).astype(complex))
 
     def two_term_constants(self, x0) -> np.ndarray:
         """``A`` solving the eight nonlinear initial-condition equations (eq. 39), by Newton's
         method from the one-term constants; raises if it does not converge."""
-        x0 = np.asarray(x0, float)
+        x0 = self.initial_state(x0)
         n = len(x0)
         if np.isnan(self.second_order).any():
             triads = ", ".join(f"l{r.j}+l{r.k}=l{r.l}" for r in self.resonances(1e-9))
@@ -104,13 +113,13 @@ class MultipleScales:
     def one_term(self, x0, tau) -> np.ndarray:
         """``x(tau)`` of the one-term solution, shape ``(len(tau), n)`` (real)."""
         a = self.one_term_constants(x0)
-        e = np.exp(np.outer(tau, self.eigenvalues))
+        e = np.exp(np.outer(finite_array("tau", tau, shape=(None,)), self.eigenvalues))
         return np.real((e * a) @ self.modes.T)
 
     def two_term(self, x0, tau) -> np.ndarray:
         """``x(tau)`` of the two-term solution, shape ``(len(tau), n)`` (real)."""
         a = self.two_term_constants(x0)
-        e = np.exp(np.outer(tau, self.eigenvalues))
+        e = np.exp(np.outer(finite_array("tau", tau, shape=(None,)), self.eigenvalues))
         first = (e * a) @ self.modes.T
         second = np.einsum("tj,tk,j,k,jki->ti", e, e, a, a, self.second_order)
         return np.real(first + second)

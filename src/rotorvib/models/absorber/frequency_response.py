@@ -16,7 +16,8 @@ import numpy as np
 from scipy.linalg import eigvals
 from scipy.optimize import minimize_scalar
 
-from rotorvib.models.absorber.parameters import Rotor
+from rotorvib.checks import finite_array, integer
+from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
 
 
 def matrices(rotor: Rotor, sets) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -41,7 +42,7 @@ def matrices(rotor: Rotor, sets) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def dynamic_stiffness(rotor: Rotor, sets, omega) -> np.ndarray:
     """``A(w) = -M w^2 + i w C + K`` (eq. 18), shape ``omega.shape + (n, n)``."""
     M, C, K = matrices(rotor, sets)
-    w = np.asarray(omega, dtype=float)[..., None, None]
+    w = finite_array("omega", omega)[..., None, None]
     return -M * w**2 + 1j * w * C + K
 
 
@@ -60,9 +61,12 @@ def theta_eq20(rotor: Rotor, x, omega, *, printed_determinant: bool = False) -> 
     ``a11 a22 a33 + a13 a22 a31 - a12 a21 a33``; the default uses the true cofactor expansion
     ``a11 a22 a33 - a13 a22 a31 - a12 a21 a33``.
     """
-    x = np.asarray(x, dtype=float)
+    x = finite_array("x", x)
+    if x.shape[-1:] != (len(DUAL_NAMES),):
+        raise ValueError(f"x: shape {x.shape}, expected (..., {len(DUAL_NAMES)}) in the order "
+                         f"{DUAL_NAMES}")
     m1, m2, k1, k2, c1, c2, d1, d2 = np.moveaxis(x, -1, 0)
-    w2 = np.asarray(omega, dtype=float) ** 2
+    w2 = finite_array("omega", omega) ** 2
     w = np.sqrt(w2)
     a11 = -(rotor.J + 2 * m1 * d1**2 + 2 * m2 * d2**2) * w2 + rotor.k_t
     a12, a13 = -2 * m1 * d1 * w2, -2 * m2 * d2 * w2
@@ -98,6 +102,7 @@ def rotor_peak(rotor: Rotor, sets, *, samples: int = 4001) -> tuple[float, float
     design: sampled on ``[w_1 / 2, 2 w_n]`` around its undamped natural frequencies ``w_i``
     (log-spaced), then refined by a bounded scalar search between the neighbours of the best
     sample."""
+    samples = integer("samples", samples, 3)
     w_nat = natural_frequencies(rotor, sets)
     w = np.geomspace(w_nat[0] / 2, 2 * w_nat[-1], samples)
 

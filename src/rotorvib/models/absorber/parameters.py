@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from rotorvib.models.checks import require
+from rotorvib.checks import require
 
 #: Order of the eight design variables of the dual absorber (paper C, section 4).
 DUAL_NAMES = ("m1", "m2", "k1", "k2", "c1", "c2", "d1", "d2")

@@ -51,6 +51,8 @@ def simulate(rotor: Rotor, sets, omega: float, t, *, model: str = "nonlinear",
     """Response from rest at times ``t``; returns ``q(t)``, shape ``(len(t), 1 + n_sets)``
     (``theta`` in rad, then each set's displacement in m).  ``model`` is ``"nonlinear"``
     (eqs 8-10) or ``"linear"`` (eq. 14)."""
+    if not (np.isfinite(omega) and omega > 0):
+        raise ValueError(f"omega = {omega!r}: must be a finite forcing frequency > 0 (rad/s)")
     n = 1 + len(sets)
     y0 = np.zeros(2 * n)
     if model == "nonlinear":

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorvib.models.checks import require
+from rotorvib.checks import require
 
 from rotorvib.models.balancer import engine
 

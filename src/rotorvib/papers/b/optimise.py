@@ -17,7 +17,11 @@ def balance_time_objective(setup: Setup, *, kinematics: str, eps_bar: float, phi
                            censored_penalty: float):
     """``X[:, (beta, mass)] -> balance time`` (s), one batch of runs per population, set up by
     ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``)
-    scores ``censored_penalty * t_end``."""
+    scores ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
+    if not (np.isfinite(censored_penalty) and censored_penalty >= 1):
+        raise ValueError(f"censored_penalty = {censored_penalty!r}: must be a finite number >= 1 "
+                         "(a censored run must never score as a balance time)")
+
     def objective(X):
         metrics = setup.runs([setup.run_inputs(mass=mass, eps_bar=eps_bar, beta=beta,
                                                phi0_deg=phi0_deg, kinematics=kinematics)

@@ -1,0 +1,42 @@
+"""Argument checks shared by the public entry points: each raises ``ValueError`` naming the
+argument, its value and what is allowed, before any work is done."""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+
+def require(obj, positive=(), nonnegative=()) -> None:
+    """``ValueError`` naming the first field of ``obj`` that is not a finite number > 0 (those in
+    ``positive``) or >= 0 (those in ``nonnegative``)."""
+    for names, ok, word in ((positive, lambda v: v > 0, "> 0"),
+                            (nonnegative, lambda v: v >= 0, ">= 0")):
+        for name in names:
+            value = getattr(obj, name)
+            if not (np.isfinite(value) and ok(value)):
+                raise ValueError(f"{type(obj).__name__}.{name} = {float(value)!r}: must be a finite "
+                                 f"number {word}")
+
+
+def finite_array(name: str, value, *, shape: tuple | None = None, dtype=float) -> np.ndarray:
+    """``value`` as an array of ``dtype``; ``ValueError`` unless every entry is finite and, where
+    ``shape`` is given, the shape matches (``None`` entries match any length)."""
+    a = np.asarray(value, dtype=dtype)
+    if shape is not None and (a.ndim != len(shape) or any(
+            want is not None and got != want for got, want in zip(a.shape, shape))):
+        want = "(" + ", ".join("any" if s is None else str(s) for s in shape) + ")"
+        raise ValueError(f"{name}: shape {a.shape}, expected {want}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: {int(np.size(a) - np.isfinite(a).sum())} of {a.size} entries "
+                         "are not finite")
+    return a
+
+
+def integer(name: str, value, minimum: int) -> int:
+    """``value`` as an ``int``; ``ValueError`` unless it is an integer (not a float or bool)
+    ``>= minimum``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < minimum:
+        raise ValueError(f"{name} = {value!r}: must be an integer >= {minimum}")
+    return int(value)
