@@ -345,10 +345,19 @@ def test_the_shipped_slurm_profile_runs_on_a_real_cluster(run_dir, tmp_path, slu
     assert (work / "results/comparison.csv").read_bytes() == comparison
 
 
+# The one lint declined on purpose: there is no conda environment (README, "Running on a SLURM
+# cluster"): environment.txt installs the project itself, which a Snakemake-built conda
+# environment cannot do.
+DECLINED_LINTS = {"Specify a conda environment or container for each rule."}
+
+
 def test_lint_and_format_are_clean():
     lint = subprocess.run([str(BIN / "snakemake"), "--lint"], cwd=ROOT, capture_output=True,
                           text=True)
-    assert lint.returncode == 0, lint.stdout + lint.stderr
+    text = lint.stdout + lint.stderr
+    lints = set(re.findall(r"^    \* (.+?):$", text, flags=re.MULTILINE))
+    assert lints <= DECLINED_LINTS, text
+    assert lint.returncode == 0 or lints, text
     fmt = subprocess.run([str(BIN / "snakefmt"), "--check", "."], cwd=ROOT, capture_output=True,
                          text=True)
     assert fmt.returncode == 0, fmt.stdout + fmt.stderr

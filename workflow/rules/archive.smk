@@ -11,8 +11,6 @@ rule archive:
         logs("archive"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     message:
         "Packing every result into one archive"
     script:

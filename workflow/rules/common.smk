@@ -16,7 +16,6 @@ except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
-ENV = "../envs/rotorvib.yaml"
 PAPER_VALUES = "data/paper_values.csv"
 
 

@@ -27,8 +27,6 @@ rule comparison:
         logs("comparison"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     message:
         "Comparison of every stated value with the reproduction, and its discrepancy analysis"
     script:

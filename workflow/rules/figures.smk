@@ -20,8 +20,6 @@ rule figure:
         paper="|".join(FIGURES),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     params:
         module=lambda wc: f"rotorvib.papers.{wc.paper}.figures",
         function=lambda wc: FIGURES[wc.paper][wc.name]["function"],

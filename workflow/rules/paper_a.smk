@@ -36,8 +36,6 @@ rule a_responses:
         logs("a_responses"),
     benchmark:
         benchmarks("a_responses")
-    conda:
-        ENV
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -58,8 +56,6 @@ rule a_stability:
         logs("a_stability"),
     benchmark:
         benchmarks("a_stability")
-    conda:
-        ENV
     params:
         case=A["case"],
         fig7=A["fig7"],
@@ -76,8 +72,6 @@ rule a_error_study:
         logs("a_error_study"),
     benchmark:
         benchmarks("a_error_study")
-    conda:
-        ENV
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -97,8 +91,6 @@ rule a_slow_flow:
         logs("a_slow_flow"),
     benchmark:
         benchmarks("a_slow_flow")
-    conda:
-        ENV
     params:
         case=A["case"],
         flow=A["slow_flow"],
@@ -120,8 +112,6 @@ rule a_reproduced_values:
         logs("a_reproduced_values"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     params:
         case=A["case"],
         zoom=A["zoom"],

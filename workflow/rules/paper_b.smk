@@ -95,8 +95,6 @@ rule b_derivation_checks:
         logs("b_derivation_checks"),
     benchmark:
         benchmarks("b_derivation_checks")
-    conda:
-        ENV
     params:
         module="rotorvib.papers.b.derivation",
     message:
@@ -114,8 +112,6 @@ rule b_stability:
         benchmarks("b_stability_{fig}")
     wildcard_constraints:
         fig="|".join(B["stability_maps"]),
-    conda:
-        ENV
     params:
         zeta=B["machine"]["zeta"],
         n=B["machine"]["n"],
@@ -136,8 +132,6 @@ rule b_balance_study:
         benchmarks("b_balance_{study}")
     wildcard_constraints:
         study="|".join(B["balance_studies"]),
-    conda:
-        ENV
     threads: 2
     resources:
         runtime=30,
@@ -157,8 +151,6 @@ rule b_time_responses:
         logs("b_time_responses"),
     benchmark:
         benchmarks("b_time_responses")
-    conda:
-        ENV
     params:
         **B_RUNS,
         responses=B["time_responses"],
@@ -176,8 +168,6 @@ rule b_ga:
         logs("b_ga"),
     benchmark:
         benchmarks("b_ga")
-    conda:
-        ENV
     threads: 2
     resources:
         runtime=60,
@@ -197,8 +187,6 @@ rule b_table1_runs:
         logs("b_table1_runs"),
     benchmark:
         benchmarks("b_table1_runs")
-    conda:
-        ENV
     threads: 2
     resources:
         runtime=30,
@@ -218,8 +206,6 @@ rule b_forces:
         logs("b_forces"),
     benchmark:
         benchmarks("b_forces")
-    conda:
-        ENV
     threads: 2
     resources:
         runtime=30,
@@ -240,8 +226,6 @@ rule b_basin:
         logs("b_basin"),
     benchmark:
         benchmarks("b_basin")
-    conda:
-        ENV
     threads: 2
     resources:
         runtime=60,
@@ -282,8 +266,6 @@ rule b_tables:
         logs("b_tables"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     params:
         R=B["machine"]["R"],
     message:
@@ -309,8 +291,6 @@ rule b_reproduced_values:
         logs("b_reproduced_values"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     params:
         R=B["machine"]["R"],
         ga=B["ga"],
@@ -331,8 +311,6 @@ rule b_discrepancies:
         logs("b_discrepancies"),
     benchmark:
         benchmarks("b_discrepancies")
-    conda:
-        ENV
     threads: 2
     params:
         paper_b={

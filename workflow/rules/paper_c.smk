@@ -95,8 +95,6 @@ rule c_derivation_checks:
         logs("c_derivation_checks"),
     benchmark:
         benchmarks("c_derivation_checks")
-    conda:
-        ENV
     params:
         module="rotorvib.papers.c.derivation",
     message:
@@ -112,8 +110,6 @@ rule c_ga:
         logs("c_ga"),
     benchmark:
         benchmarks("c_ga")
-    conda:
-        ENV
     resources:
         runtime=20,
     params:
@@ -136,8 +132,6 @@ rule c_frequency_response:
         logs("c_frequency_response"),
     benchmark:
         benchmarks("c_frequency_response")
-    conda:
-        ENV
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -155,8 +149,6 @@ rule c_mass_ratio:
         logs("c_mass_ratio"),
     benchmark:
         benchmarks("c_mass_ratio")
-    conda:
-        ENV
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -175,8 +167,6 @@ rule c_distance:
         logs("c_distance"),
     benchmark:
         benchmarks("c_distance")
-    conda:
-        ENV
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -195,8 +185,6 @@ rule c_time_response:
         logs("c_time_response"),
     benchmark:
         benchmarks("c_time_response")
-    conda:
-        ENV
     resources:
         runtime=20,
     params:
@@ -225,8 +213,6 @@ rule c_table2:
         logs("c_table2"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     message:
         "Paper C: Table 2 beside the genetic-algorithm optimum"
     script:
@@ -247,8 +233,6 @@ rule c_reproduced_values:
         logs("c_reproduced_values"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
-    conda:
-        ENV
     params:
         rotor=C["rotor"],
         claims=C["claims"],
@@ -268,8 +252,6 @@ rule c_discrepancies:
         logs("c_discrepancies"),
     benchmark:
         benchmarks("c_discrepancies")
-    conda:
-        ENV
     params:
         rotor=C["rotor"],
         table2=C["table2"],
