@@ -2,7 +2,8 @@ import copy
 
 import pytest
 
-from rotorvib.io.config import ConfigError, config_hash, validate_config
+from conftest import ROOT
+from rotorvib.io.config import ConfigError, config_hash, main, merge, validate_config
 
 
 def _broken(config, mutate):
@@ -63,3 +64,25 @@ def test_paper_b_config_errors(config, schema, mutate, expected):
     with pytest.raises(ConfigError) as err:
         validate_config(_broken(config, mutate), schema)
     assert expected in str(err.value)
+
+
+def test_merge_overrides_at_every_depth_like_snakemake():
+    base = {"a": {"b": 1, "c": [1, 2]}, "d": 0}
+    assert merge(base, {"a": {"c": [3]}}) == {"a": {"b": 1, "c": [3]}, "d": 0}
+    assert base == {"a": {"b": 1, "c": [1, 2]}, "d": 0}          # not modified
+
+
+def test_config_check_command_gives_file_line_and_column(tmp_path, capsys):
+    """Snakemake's own message for a broken --configfile has no place; the check command has."""
+    tab = tmp_path / "tab.yaml"
+    tab.write_text("paper_c:\n\trotor:\n    M: 5\n")
+    assert main(["--schema", str(ROOT / "config/schema.yaml"), str(ROOT / "config/config.yaml"),
+                 str(tab)]) == 1
+    assert f"{tab}:2:1: found character '\\t'" in capsys.readouterr().out
+    override = tmp_path / "override.yaml"
+    override.write_text("paper_c:\n  rotor:\n    M: -5.0\n")
+    assert main(["--schema", str(ROOT / "config/schema.yaml"), str(ROOT / "config/config.yaml"),
+                 str(override)]) == 1
+    assert "config key 'paper_c.rotor.M': -5.0 is not allowed" in capsys.readouterr().out
+    assert main(["--schema", str(ROOT / "config/schema.yaml"), str(ROOT / "config/config.yaml"),
+                 str(ROOT / "config/test/config.yaml")]) == 0

@@ -9,6 +9,10 @@ of a grid).  Defaults given in the schema are filled in, and every violation is 
 dotted key it concerns and what is allowed, e.g.::
 
     config key 'paper_c.rotor.M': -1.0 is not allowed; must be a number > 0 (disk mass, kg)
+
+Snakemake parses ``--configfile`` files itself before the workflow starts and reports a YAML
+syntax error without its place; ``python -m rotorvib.io.config FILE...`` checks files as the
+workflow would (later files override earlier ones) and gives file, line and column.
 """
 
 from __future__ import annotations
@@ -60,8 +64,9 @@ def load_yaml(path: str | Path) -> dict:
     except yaml.MarkedYAMLError as error:
         mark = error.problem_mark or error.context_mark
         where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)
-        raise ConfigError(f"{where}: {error.problem or error.context} (YAML syntax; tabs are not "
-                          "allowed for indentation)") from None
+        problem = error.problem or error.context
+        hint = "; tabs are not allowed for indentation" if "\\t" in str(problem) else ""
+        raise ConfigError(f"{where}: {problem} (YAML syntax{hint})") from None
     if data is None:
         return {}
     if not isinstance(data, dict):
@@ -239,6 +244,44 @@ def validate_config(config: dict, schema: dict) -> dict:
     return filled
 
 
+def merge(base: dict, override: dict) -> dict:
+    """``base`` updated by ``override`` key by key at every depth (as Snakemake merges
+    ``--configfile`` files)."""
+    merged = copy.deepcopy(base)
+    for key, value in override.items():
+        if isinstance(value, dict) and isinstance(merged.get(key), dict):
+            merged[key] = merge(merged[key], value)
+        else:
+            merged[key] = copy.deepcopy(value)
+    return merged
+
+
+def check_files(paths, schema_path: str | Path = "config/schema.yaml") -> dict:
+    """The validated configuration of ``paths`` merged in order; :class:`ConfigError` otherwise."""
+    config: dict = {}
+    for path in paths:
+        config = merge(config, load_yaml(path))
+    return validate_config(config, load_yaml(schema_path))
+
+
+def main(argv=None) -> int:
+    """``python -m rotorvib.io.config [--schema S] FILE...``: 0 and "valid" or 1 and the errors."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="python -m rotorvib.io.config",
+                                     description="Check configuration files as the workflow does.")
+    parser.add_argument("--schema", default="config/schema.yaml")
+    parser.add_argument("files", nargs="+")
+    args = parser.parse_args(argv)
+    try:
+        check_files(args.files, args.schema)
+    except ConfigError as error:
+        print(error)
+        return 1
+    print(f"valid: {' + '.join(args.files)}")
+    return 0
+
+
 def canonical_json(obj: Any) -> str:
     """Key-sorted, compact JSON: the canonical text of a configuration (section)."""
     return json.dumps(obj, sort_keys=True, separators=(",", ":"), ensure_ascii=True)
@@ -247,3 +290,7 @@ def canonical_json(obj: Any) -> str:
 def config_hash(obj: Any) -> str:
     """SHA-256 of :func:`canonical_json`; equal configs give equal hashes."""
     return hashlib.sha256(canonical_json(obj).encode()).hexdigest()
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
