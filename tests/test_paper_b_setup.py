@@ -10,7 +10,7 @@ from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, simulate
 from rotorvib.papers.b.optimise import balance_time_objective, tune_balancer
 from rotorvib.papers.b.setup import RUN_PARAMETERS, Setup, study_problem
-from rotorvib.papers.b.studies import balance_study_dataset
+from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset, grid_dataset
 
 IC1 = (40.0, 45.0)
 
@@ -99,3 +99,32 @@ def test_balancer_ga_is_deterministic_for_a_seed(setup):
     np.testing.assert_array_equal(a.x, b.x)
     np.testing.assert_array_equal(a.history["best_f"], b.history["best_f"])
     assert 0.1 <= a.x[0] <= 1.0 and 0.006 <= a.x[1] <= 0.02
+
+
+def test_basin_map_is_run_on_half_the_grid_and_mirrors_the_full_one(setup, monkeypatch):
+    """Identical balls: swapping them leaves the run unchanged, so the basin map computed on
+    phi1 <= phi2 and mirrored equals the map computed on every point (to round-off), with
+    n (n + 1) / 2 runs instead of n^2."""
+    n, counted = 6, []
+    runs = setup.runs
+
+    def counting(inputs, **kwargs):
+        counted.append(len(inputs))
+        return runs(inputs, **kwargs)
+
+    monkeypatch.setattr(Setup, "runs", lambda self, inputs, **kw: counting(inputs, **kw))
+    half = basin_dataset(setup, kinematics=["printed"], cases=[(0.2, 0.006)], n=n,
+                         eps_bar=0.012)
+    angles = half.phi1.values
+
+    def make_inputs(kinematics, case, phi1, phi2):
+        return setup.run_inputs(mass=0.006, eps_bar=0.012, beta=0.2, phi0_deg=(phi1, phi2),
+                                kinematics=kinematics)
+
+    full = grid_dataset(setup, {"kinematics": ["printed"], "case": [0], "phi1": angles,
+                                "phi2": angles}, half.coords, make_inputs, half.attrs)
+    assert counted == [n * (n + 1) // 2, n * n]
+    assert np.all(half.balanced.values == 1)
+    np.testing.assert_allclose(half.balance_time.values, full.balance_time.values, atol=1e-7)
+    np.testing.assert_array_equal(half.balance_time.values[0, 0],
+                                  half.balance_time.values[0, 0].T)

@@ -46,11 +46,32 @@ def _case_coords(cases, long_name):
                           {"long_name": "ball mass of the case", "units": "kg"})}
 
 
-def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dict) -> xr.Dataset:
-    """Run every point of the product of ``axes`` (name -> values) and label the metrics."""
+def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dict,
+                 symmetric: tuple[str, str] | None = None) -> xr.Dataset:
+    """Run every point of the product of ``axes`` (name -> values) and label the metrics.
+
+    ``symmetric = (a, b)``: axes ``a`` and ``b`` have the same values and the metrics are
+    invariant under swapping them, so only the points with ``index(a) <= index(b)`` are run and
+    the others are their mirror images (about half the runs)."""
     names = list(axes)
-    points = list(itertools.product(*axes.values()))
-    metrics = setup.runs([make_inputs(**dict(zip(names, pt))) for pt in points])
+    points = list(itertools.product(*(range(len(v)) for v in axes.values())))
+    index_of = {p: p for p in points}
+    if symmetric is not None:
+        ia, ib = names.index(symmetric[0]), names.index(symmetric[1])
+        if not np.array_equal(axes[symmetric[0]], axes[symmetric[1]]):
+            raise ValueError(f"symmetric axes {symmetric} must have the same values")
+
+        def swapped(p):
+            q = list(p)
+            q[ia], q[ib] = p[ib], p[ia]
+            return tuple(q)
+
+        index_of = {p: p if p[ia] <= p[ib] else swapped(p) for p in points}
+    run = sorted(set(index_of.values()))
+    row = {p: k for k, p in enumerate(run)}
+    metrics = setup.runs([make_inputs(**{name: axes[name][i] for name, i in zip(names, p)})
+                          for p in run])
+    metrics = metrics[[row[index_of[p]] for p in points]]
     shape = tuple(len(v) for v in axes.values())
     data = {}
     for var in METRIC_ATTRS:
@@ -121,7 +142,8 @@ def force_dataset(setup: Setup, *, kinematics, cases, R_values, speed, eps_bar, 
 
 
 def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar):
-    """Balance time over all initial ball positions (phi1(0), phi2(0)) in [0, 360)^2."""
+    """Balance time over all initial ball positions (phi1(0), phi2(0)) in [0, 360)^2; the balls
+    are identical, so the map is symmetric under swapping them and half of it is run."""
     angles = np.arange(n) * 360.0 / n
 
     def make_inputs(kinematics, case, phi1, phi2):
@@ -138,4 +160,6 @@ def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar):
     return grid_dataset(setup, axes, coords, make_inputs,
                         dataset_attrs("balance time over all initial ball positions",
                                       "Beyond the paper: are the three initial conditions of eq. "
-                                      f"(39) representative? (eps_bar = {eps_bar})", "eq. (39)"))
+                                      f"(39) representative? (eps_bar = {eps_bar}; phi2 < phi1 "
+                                      "mirrors phi1 < phi2: identical balls)", "eq. (39)"),
+                        symmetric=("phi1", "phi2"))
