@@ -7,7 +7,6 @@ never turned into numbers.
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 
 class IntegrationError(RuntimeError):
@@ -32,6 +31,10 @@ def integrate(rhs, y0, t_eval, *, rtol: float, atol: float, method: str = "DOP85
               args: tuple = ()) -> np.ndarray:
     """Integrate ``y' = rhs(t, y, *args)`` from ``t_eval[0]``; return ``y`` at ``t_eval``, shape
     ``(len(t_eval), len(y0))``."""
+    # Imported here: the compiled engine's jobs use only the checks above, and importing
+    # scipy.integrate costs them about 0.8 s each.
+    from scipy.integrate import solve_ivp
+
     check_tolerances(rtol, atol)
     t_eval = np.asarray(t_eval, dtype=float)
     y0 = np.asarray(y0, dtype=float)
