@@ -42,14 +42,16 @@ def positions(disk_angle):
 
 @lru_cache(maxsize=4)
 def equations(disk_angle):
-    """Lagrange's equations (1) from T (4), V (5) and F (6)."""
+    """Lagrange's equations (1) from T (4), V (5) and F (6), expanded with the trigonometric
+    functions of sums expanded (a canonical form in which the comparisons below reach zero; full
+    ``simplify`` gave the same PASS/FAIL on every row at about five times the cost)."""
     _, G, balls = positions(disk_angle)
     T = (IG * _d(disk_angle) ** 2 / 2 + M * _d(G).dot(_d(G)) / 2
          + m * sum(_d(b).dot(_d(b)) for b in balls) / 2)
     V = k * r**2 / 2
     F = c * (_d(r) ** 2 + r**2 * _d(theta) ** 2) / 2 + D * sum(_d(p) ** 2 for p in phis) / 2
     forces = [-sp.diff(F, _d(q)) for q in Q]
-    return [sp.expand(sp.simplify(e)) for e in lagrange_equations(T, V, Q, t, forces)]
+    return [sp.expand(sp.expand_trig(e)) for e in lagrange_equations(T, V, Q, t, forces)]
 
 
 def printed_equations(angle=None, spin=None, spin_rate=None):
