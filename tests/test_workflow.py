@@ -294,7 +294,7 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
     snakemake(run_dir, "-j2", "archive", *REDUCED)
     archive = run_dir / "results/archive/rotorvib-results.tar.gz"
     members = verify_archive(archive)
-    assert "results/paper_c/datasets/ga.nc" in members
+    assert {"results/paper_c/datasets/ga.nc", "LICENSE", "CITATION.cff"} <= set(members)
     fresh = _copy_repository(tmp_path / "fresh")
     with tarfile.open(archive) as tar:
         tar.extractall(fresh, filter="data")

@@ -1,10 +1,12 @@
-# `snakemake -j2 archive`: one tarball of every dataset, table and figure, with a SHA-256
-# manifest and a README on restoring it without recomputation.
+# `snakemake -j2 archive`: one tarball of every dataset, table and figure, the licence and the
+# citation file, with a SHA-256 manifest and a README on restoring it without recomputation.
 
 
 rule archive:
     input:
         all_results(),
+        "LICENSE",
+        "CITATION.cff",
     output:
         "results/archive/rotorvib-results.tar.gz",
     log:
