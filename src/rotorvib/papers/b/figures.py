@@ -222,7 +222,10 @@ def basin(basin, paper, ics):
     cases = basin.case.size
     fig, axes = figure(1, cases, figsize=(5.2 * cases, 4.6))
     axes = np.atleast_1d(axes)
-    b = pick(basin, kinematics=_kinematics(basin)[0])
+    kinematics = _kinematics(basin)[0]
+    b = pick(basin, kinematics=kinematics)
+    fig.suptitle(f"Balance time over the initial ball positions ({kinematics} kinematics, "
+                 f"eps/R = {basin.attrs['eps_bar']:g}, run-up as configured)", fontsize=10)
     vmax = np.nanmax(b.balance_time.values)
     for j, ax in enumerate(axes):
         data = np.ma.masked_invalid(b.balance_time.isel(case=j).values.T)

@@ -157,9 +157,9 @@ def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar):
               **_case_coords(cases, "(beta, m) case"),
               **axis_coord("phi1", angles, "initial angle of ball 1", "degree"),
               **axis_coord("phi2", angles, "initial angle of ball 2", "degree")}
-    return grid_dataset(setup, axes, coords, make_inputs,
-                        dataset_attrs("balance time over all initial ball positions",
-                                      "Beyond the paper: are the three initial conditions of eq. "
-                                      f"(39) representative? (eps_bar = {eps_bar}; phi2 < phi1 "
-                                      "mirrors phi1 < phi2: identical balls)", "eq. (39)"),
+    attrs = dataset_attrs("balance time over all initial ball positions",
+                          "Beyond the paper: are the three initial conditions of eq. (39) "
+                          f"representative? (eps_bar = {eps_bar}; phi2 < phi1 mirrors "
+                          "phi1 < phi2: identical balls)", "eq. (39)")
+    return grid_dataset(setup, axes, coords, make_inputs, {**attrs, "eps_bar": eps_bar},
                         symmetric=("phi1", "phi2"))
