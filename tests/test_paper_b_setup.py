@@ -8,7 +8,7 @@ import pytest
 
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, simulate
-from rotorvib.papers.b.optimise import balance_time_objective, tune_balancer
+from rotorvib.papers.b.optimise import balance_time_objective, ga_dataset, tune_balancer
 from rotorvib.papers.b.setup import RUN_PARAMETERS, Setup, study_problem
 from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset, grid_dataset
 
@@ -99,6 +99,24 @@ def test_balancer_ga_is_deterministic_for_a_seed(setup):
     np.testing.assert_array_equal(a.x, b.x)
     np.testing.assert_array_equal(a.history["best_f"], b.history["best_f"])
     assert 0.1 <= a.x[0] <= 1.0 and 0.006 <= a.x[1] <= 0.02
+
+
+def test_the_ga_dataset_runs_all_problems_in_lockstep_with_the_results_of_separate_runs(setup):
+    """ga_dataset runs the (eps_bar x IC) problems together, one batch of runs per generation;
+    each optimum equals that of its problem's own GA."""
+    ics = {"IC1": IC1, "IC3": (260.0, 265.0)}
+    ds = ga_dataset(setup, kinematics=["printed"], eps_bars=[0.012, 0.02], ics=ics,
+                    beta_bounds=(0.1, 1.0), mass_bounds=(0.006, 0.02), pop_size=6, n_gen=3,
+                    seed=4, censored_penalty=2.0)
+    for eps_bar in (0.012, 0.02):
+        for ic, phi0 in ics.items():
+            objective = balance_time_objective(setup, kinematics="printed", eps_bar=eps_bar,
+                                               phi0_deg=phi0, censored_penalty=2.0)
+            alone = tune_balancer(objective, (0.1, 1.0), (0.006, 0.02), pop_size=6, n_gen=3,
+                                  seed=4)
+            at = ds.sel(eps_bar=eps_bar).isel(kinematics=0, ic=list(ics).index(ic))
+            assert float(at.beta_opt) == alone.x[0] and float(at.mass_opt) == alone.x[1]
+            assert float(at.balance_time_opt) == alone.f
 
 
 def test_basin_map_is_run_on_half_the_grid_and_mirrors_the_full_one(setup, monkeypatch):

@@ -11,7 +11,6 @@ from pymoo.core.callback import Callback
 from pymoo.core.problem import Problem
 from pymoo.operators.crossover.sbx import SBX
 from pymoo.operators.mutation.pm import PM
-from pymoo.optimize import minimize as pymoo_minimize
 
 from rotorvib.checks import finite_array, integer
 
@@ -26,24 +25,34 @@ class GAResult:
     history: dict[str, np.ndarray]
 
 
-class _Batch(Problem):
-    """Box-bounded single-objective problem evaluated on the whole population at once."""
+class _HandedOver(Problem):
+    """Box-bounded single-objective problem whose values are computed outside pymoo (all the
+    problems of a lockstep run in one batch) and handed over before each evaluation."""
 
-    def __init__(self, objective, lower, upper):
-        super().__init__(n_var=len(lower), n_obj=1, xl=np.asarray(lower, float),
-                         xu=np.asarray(upper, float))
-        self._objective = objective
+    def __init__(self, lower, upper):
+        super().__init__(n_var=len(lower), n_obj=1, xl=lower, xu=upper)
+        self._x = self._f = None
+
+    def hand_over(self, x: np.ndarray, f: np.ndarray) -> None:
+        self._x, self._f = x, f
 
     def _evaluate(self, x, out, *args, **kwargs):
-        f = np.asarray(self._objective(x), dtype=float)
-        if f.shape != (len(x),):
-            raise ValueError(f"objective: returned shape {f.shape} for a population of "
-                             f"{len(x)}, expected ({len(x)},)")
-        bad = ~np.isfinite(f)
-        if bad.any():
-            raise FloatingPointError(f"objective: non-finite value at {int(bad.sum())} of "
-                                     f"{len(x)} points, first x = {x[np.argmax(bad)].tolist()}")
-        out["F"] = f[:, None]
+        if not np.array_equal(x, self._x):
+            raise RuntimeError("pymoo evaluated other points than it asked for")
+        out["F"] = self._f[:, None]
+
+
+def _checked(f, x: np.ndarray) -> np.ndarray:
+    """The objective's values for the population ``x``: one finite number per point."""
+    f = np.asarray(f, dtype=float)
+    if f.shape != (len(x),):
+        raise ValueError(f"objective: returned shape {f.shape} for a population of "
+                         f"{len(x)}, expected ({len(x)},)")
+    bad = ~np.isfinite(f)
+    if bad.any():
+        raise FloatingPointError(f"objective: non-finite value at {int(bad.sum())} of "
+                                 f"{len(x)} points, first x = {x[np.argmax(bad)].tolist()}")
+    return f
 
 
 class _History(Callback):
@@ -60,34 +69,68 @@ class _History(Callback):
         if self.progress is not None:
             self.progress(algorithm.n_gen, float(best.F[0]))
 
+    def result(self, algorithm) -> GAResult:
+        best_f, mean_f, n_eval, best_x = zip(*self.rows)
+        opt = algorithm.result()
+        return GAResult(x=np.asarray(opt.X, dtype=float), f=float(opt.F[0]),
+                        history={"best_f": np.array(best_f), "mean_f": np.array(mean_f),
+                                 "n_eval": np.array(n_eval), "best_x": np.array(best_x)})
 
-def minimise(objective: Callable[[np.ndarray], np.ndarray], lower, upper, *, pop_size: int,
-             n_gen: int, seed: int, sbx_eta: float = 15.0, pm_eta: float = 20.0,
-             progress: Callable[[int, float], None] | None = None) -> GAResult:
-    """Minimise ``objective(X) -> f`` (``X`` of shape ``(pop, n_var)``) over the box
-    ``[lower, upper]`` with pymoo's real-coded GA (tournament selection, SBX crossover,
-    polynomial mutation, fitness survival) for exactly ``n_gen`` generations.
 
-    Deterministic for a given ``seed``.  ``progress(generation, best_f)`` is called per generation.
-    Bad arguments (non-finite or empty box, ``lower >= upper``, non-integer sizes) raise
-    ``ValueError`` naming them; a non-finite objective value raises ``FloatingPointError``.
-    """
+def _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta):
     lower = finite_array("lower", lower, shape=(None,))
     upper = finite_array("upper", upper, shape=lower.shape)
     if lower.size == 0 or np.any(lower >= upper):
         raise ValueError(f"lower = {lower.tolist()}, upper = {upper.tolist()}: need "
                          "lower < upper in every variable")
-    pop_size, n_gen = integer("pop_size", pop_size, 2), integer("n_gen", n_gen, 1)
-    seed = integer("seed", seed, 0)
+    integer("pop_size", pop_size, 2), integer("n_gen", n_gen, 1), integer("seed", seed, 0)
     for name, eta in (("sbx_eta", sbx_eta), ("pm_eta", pm_eta)):
         if not (np.isfinite(eta) and eta > 0):
             raise ValueError(f"{name} = {eta!r}: must be a finite number > 0")
-    algorithm = GA(pop_size=pop_size, crossover=SBX(eta=sbx_eta), mutation=PM(eta=pm_eta),
-                   eliminate_duplicates=True)
-    history = _History(progress)
-    result = pymoo_minimize(_Batch(objective, lower, upper), algorithm, ("n_gen", n_gen),
-                            seed=seed, callback=history, verbose=False)
-    best_f, mean_f, n_eval, best_x = zip(*history.rows)
-    return GAResult(x=np.asarray(result.X, dtype=float), f=float(result.F[0]),
-                    history={"best_f": np.array(best_f), "mean_f": np.array(mean_f),
-                             "n_eval": np.array(n_eval), "best_x": np.array(best_x)})
+    return lower, upper
+
+
+def minimise_many(objectives: Callable[[list[np.ndarray]], list[np.ndarray]], n_problems: int,
+                  lower, upper, *, pop_size: int, n_gen: int, seed: int, sbx_eta: float = 15.0,
+                  pm_eta: float = 20.0,
+                  progress: Callable[[int, float], None] | None = None) -> list[GAResult]:
+    """Minimise ``n_problems`` objectives over the same box ``[lower, upper]`` with pymoo's
+    real-coded GA (tournament selection, SBX crossover, polynomial mutation, fitness survival),
+    each for exactly ``n_gen`` generations from the same ``seed``, in lockstep: every
+    generation, ``objectives([X_0, ..., X_{n-1}]) -> [f_0, ..., f_{n-1}]`` evaluates all the
+    populations in one call (one batch of runs keeps every core busy).  Each algorithm draws from
+    its own random generator, so the results equal those of ``n_problems`` separate runs of
+    :func:`minimise`.  ``progress(generation, best_f)`` follows the first problem.
+
+    Bad arguments (non-finite or empty box, ``lower >= upper``, non-integer sizes) raise
+    ``ValueError`` naming them; a non-finite objective value raises ``FloatingPointError``.
+    """
+    lower, upper = _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta)
+    runs = []
+    for i in range(integer("n_problems", n_problems, 1)):
+        problem = _HandedOver(lower, upper)
+        algorithm = GA(pop_size=pop_size, crossover=SBX(eta=sbx_eta), mutation=PM(eta=pm_eta),
+                       eliminate_duplicates=True)
+        history = _History(progress if i == 0 else None)
+        algorithm.setup(problem, termination=("n_gen", n_gen), seed=seed, callback=history,
+                        verbose=False)
+        runs.append((problem, algorithm, history))
+    while runs[0][1].has_next():
+        asked = [algorithm.ask() for _, algorithm, _ in runs]
+        xs = [pop.get("X") for pop in asked]
+        fs = [_checked(f, x) for f, x in zip(objectives(xs), xs)]
+        for (problem, algorithm, _), pop, x, f in zip(runs, asked, xs, fs):
+            problem.hand_over(x, f)
+            algorithm.evaluator.eval(problem, pop, algorithm=algorithm)
+            algorithm.tell(infills=pop)
+    return [history.result(algorithm) for _, algorithm, history in runs]
+
+
+def minimise(objective: Callable[[np.ndarray], np.ndarray], lower, upper, *, pop_size: int,
+             n_gen: int, seed: int, sbx_eta: float = 15.0, pm_eta: float = 20.0,
+             progress: Callable[[int, float], None] | None = None) -> GAResult:
+    """Minimise ``objective(X) -> f`` (``X`` of shape ``(pop, n_var)``) over the box
+    ``[lower, upper]``: :func:`minimise_many` with one problem.  Deterministic for a ``seed``."""
+    return minimise_many(lambda xs: [objective(xs[0])], 1, lower, upper, pop_size=pop_size,
+                         n_gen=n_gen, seed=seed, sbx_eta=sbx_eta, pm_eta=pm_eta,
+                         progress=progress)[0]

@@ -7,55 +7,68 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import label_coord
-from rotorvib.methods.ga import GAResult, minimise
+from rotorvib.methods.ga import GAResult, minimise, minimise_many
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, dataset_attrs,
                                      parameter_coord)
 
 
-def balance_time_objective(setup: Setup, *, kinematics: str, eps_bar: float, phi0_deg,
-                           censored_penalty: float):
-    """``X[:, (beta, mass)] -> balance time`` (s), one batch of runs per population, set up by
-    ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``)
-    scores ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
+def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float):
+    """``[X_i[:, (beta, mass)]] -> [balance times (s)]`` for GA problems ``{"kinematics",
+    "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch, set up by
+    ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``) scores
+    ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
     if not (np.isfinite(censored_penalty) and censored_penalty >= 1):
         raise ValueError(f"censored_penalty = {censored_penalty!r}: must be a finite number >= 1 "
                          "(a censored run must never score as a balance time)")
 
-    def objective(X):
-        metrics = setup.runs([setup.run_inputs(mass=mass, eps_bar=eps_bar, beta=beta,
-                                               phi0_deg=phi0_deg, kinematics=kinematics)
-                              for beta, mass in X], progress=False)
-        return np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"),
-                        censored_penalty * setup.criterion.t_end)
+    def objectives(xs):
+        metrics = setup.runs([setup.run_inputs(mass=mass, beta=beta, **problem)
+                              for problem, x in zip(problems, xs) for beta, mass in x],
+                             progress=False)
+        scores = np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"),
+                          censored_penalty * setup.criterion.t_end)
+        return np.split(scores, np.cumsum([len(x) for x in xs])[:-1])
 
-    return objective
+    return objectives
+
+
+def balance_time_objective(setup: Setup, *, kinematics: str, eps_bar: float, phi0_deg,
+                           censored_penalty: float):
+    """``X[:, (beta, mass)] -> balance time`` (s) of one problem (see
+    :func:`balance_time_objectives`)."""
+    objectives = balance_time_objectives(
+        setup, [{"kinematics": kinematics, "eps_bar": eps_bar, "phi0_deg": phi0_deg}],
+        censored_penalty=censored_penalty)
+    return lambda x: objectives([x])[0]
+
+
+def _box(beta_bounds, mass_bounds) -> tuple[np.ndarray, np.ndarray]:
+    return (np.array([beta_bounds[0], mass_bounds[0]]),
+            np.array([beta_bounds[1], mass_bounds[1]]))
 
 
 def tune_balancer(objective, beta_bounds, mass_bounds, *, pop_size, n_gen, seed) -> GAResult:
-    lower = np.array([beta_bounds[0], mass_bounds[0]])
-    upper = np.array([beta_bounds[1], mass_bounds[1]])
-    return minimise(objective, lower, upper, pop_size=pop_size, n_gen=n_gen, seed=seed)
+    """Minimise one balance-time ``objective`` over the box of (beta, m)."""
+    return minimise(objective, *_box(beta_bounds, mass_bounds), pop_size=pop_size, n_gen=n_gen,
+                    seed=seed)
 
 
 def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, mass_bounds,
                pop_size, n_gen, seed, censored_penalty) -> xr.Dataset:
-    """Genetic algorithm over (beta, m) for every eps_bar x initial condition (section 9)."""
+    """Genetic algorithm over (beta, m) for every kinematics x eps_bar x initial condition
+    (section 9), all problems in lockstep (one batch of runs per generation)."""
     shape = (len(kinematics), len(eps_bars), len(ics))
-    x_opt, f_opt = np.empty(shape + (2,)), np.empty(shape)
-    history = np.empty(shape + (n_gen,))
-    n_eval = np.empty(shape, dtype=np.int64)
-    for i, kin in enumerate(kinematics):
-        for j, eps_bar in enumerate(eps_bars):
-            for q, ic in enumerate(ics):
-                objective = balance_time_objective(setup, kinematics=kin, eps_bar=eps_bar,
-                                                   phi0_deg=ics[ic],
-                                                   censored_penalty=censored_penalty)
-                res = tune_balancer(objective, beta_bounds, mass_bounds, pop_size=pop_size,
-                                    n_gen=n_gen, seed=seed)
-                x_opt[i, j, q], f_opt[i, j, q] = res.x, res.f
-                history[i, j, q] = res.history["best_f"]
-                n_eval[i, j, q] = res.history["n_eval"][-1]
+    problems = [{"kinematics": kin, "eps_bar": eps_bar, "phi0_deg": ics[ic]}
+                for kin in kinematics for eps_bar in eps_bars for ic in ics]
+    results = minimise_many(balance_time_objectives(setup, problems,
+                                                    censored_penalty=censored_penalty),
+                            len(problems), *_box(beta_bounds, mass_bounds), pop_size=pop_size,
+                            n_gen=n_gen, seed=seed)
+    x_opt = np.array([r.x for r in results]).reshape(shape + (2,))
+    f_opt = np.array([r.f for r in results]).reshape(shape)
+    history = np.array([r.history["best_f"] for r in results]).reshape(shape + (n_gen,))
+    n_eval = np.array([r.history["n_eval"][-1] for r in results], dtype=np.int64).reshape(shape)
     dims = ("kinematics", "eps_bar", "ic")
     return xr.Dataset(
         {"beta_opt": (dims, x_opt[..., 0], {"long_name": "optimum ball damping ratio",
