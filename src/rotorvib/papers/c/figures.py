@@ -137,6 +137,9 @@ def ga_convergence(ga, paper):
     ax.axhline(float(ga.theta_table2), color="grey", ls="-.",
                label="Table 2 evaluated with eq. (20)")
     paper_hline(ax, paper["theta_ga"], f"objective {paper['theta_ga']:g} rad")
+    shown = [*ga.best_objective.values, *ga.mean_objective.values, float(ga.theta_table2),
+             paper["theta_ga"]]
+    ax.set_ylim(min(shown) / 1.5, max(shown) * 1.5)      # no line on the frame
     ax.set(xlabel="generation", ylabel="|Theta(omega_n)| (rad)",
            title="Genetic algorithm: convergence of the objective")
     ax.legend()
