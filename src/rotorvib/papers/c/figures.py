@@ -44,8 +44,10 @@ def fig4(tr, paper):
                  label=CASES[case])
     ax1.set(ylabel="theta (rad)", title="Fig 4: torsional response at omega_n, eqs. (8)-(10)")
     ax2.set(xlabel="time t (s)", ylabel="theta (rad)", title="zoom on the absorbers")
+    top = max(np.abs(tr[f"theta_{case}"].values[NONLINEAR]).max() for case in ("dual", "single"))
+    ax2.set_ylim(-1.15 * top, 1.8 * top)          # room for the legend above the data
     ax1.legend(loc="upper left")
-    ax2.legend(loc="upper right")
+    ax2.legend(loc="upper right", ncol=2, fontsize=8)
     return fig
 
 
