@@ -15,18 +15,30 @@ def _methods(ds):
 
 
 def _three_methods(ds, variable, zoom, title, ylabel, i_beta):
-    fig, (a1, a2) = figure(2, 1, figsize=(7.0, 6.0))
+    """The three solutions over the whole run, a zoom, and each multiple-scales solution's
+    error against Runge-Kutta on a log scale (where the curves above cannot be told apart)."""
+    fig, (a1, a2, a3) = figure(3, 1, figsize=(7.0, 8.6))
     tau = ds.tau.values
     inside = (tau >= zoom[0]) & (tau <= zoom[1])
-    for k, method in enumerate(_methods(ds)):
+    methods = _methods(ds)
+    reference = ds[variable].values[i_beta, methods.index("runge_kutta")]
+    for k, method in enumerate(methods):
         color, ls, label = METHOD_STYLE[method]
         y = ds[variable].values[i_beta, k]
         a1.plot(tau, y, color=color, ls=ls, lw=1, label=label)
         a2.plot(tau[inside], y[inside], color=color, ls=ls, lw=1.2, label=label)
+        if method != "runge_kutta":
+            a3.semilogy(tau, np.abs(y - reference), color=color, lw=0.8,
+                        label=f"{label}: max {np.max(np.abs(y - reference)):.2g}")
     a1.set(ylabel=ylabel, title=title)
-    a2.set(xlabel="dimensionless time tau = w_n t", ylabel=ylabel,
-           title=f"zoom on tau in [{zoom[0]:g}, {zoom[1]:g}]")
+    a2.set(ylabel=ylabel, title=f"zoom on tau in [{zoom[0]:g}, {zoom[1]:g}]")
+    errors = [np.abs(ds[variable].values[i_beta, k] - reference).max()
+              for k, m in enumerate(methods) if m != "runge_kutta"]
+    a3.set_ylim(1e-4 * min(errors), 3 * max(errors))     # four decades below the smaller one
+    a3.set(xlabel="dimensionless time tau = w_n t", ylabel=f"|error| of {ylabel}",
+           title="error against Runge-Kutta (both start exact at tau = 0)")
     a1.legend(fontsize=8)
+    a3.legend(fontsize=8)
     return fig
 
 
