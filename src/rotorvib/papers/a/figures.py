@@ -73,19 +73,21 @@ def fig4(resp, paper, beta):
 
 
 def _beta_family(resp, betas, names, ylabels, title):
-    """Runge-Kutta responses of ``names`` (two panels) for several ball damping ratios."""
-    fig, axes = figure(2, 1, sharex=True, figsize=(7.0, 6.0))
+    """Runge-Kutta responses of ``names`` (one row each) for several ball damping ratios, one
+    column per beta as in the paper (on one axis the curves hide one another)."""
+    fig, axes = figure(len(names), len(betas), sharex=True, sharey="row",
+                       figsize=(3.6 * len(betas), 6.0), squeeze=False)
     tau = resp.tau.values
     rk = _methods(resp).index("runge_kutta")
     for j, beta in enumerate(betas):
         i = int(np.argmin(np.abs(resp.beta.values - beta)))
-        for ax, name in zip(axes, names):
-            ax.plot(tau, resp[name].values[i, rk], color=f"C{j}", lw=0.9, label=f"beta = {beta:g}")
-    for ax, ylabel in zip(axes, ylabels):
-        ax.set(ylabel=ylabel)
-    axes[0].set(title=title)
-    axes[1].set(xlabel="dimensionless time tau")
-    axes[0].legend(fontsize=8)
+        for row, (name, ylabel) in enumerate(zip(names, ylabels)):
+            ax = axes[row, j]
+            ax.plot(tau, resp[name].values[i, rk], color=f"C{j}", lw=0.9)
+            ax.set(ylabel=ylabel if j == 0 else "")
+        axes[0, j].set_title(f"beta = {beta:g}", fontsize=10)
+        axes[-1, j].set(xlabel="tau = w_n t (dimensionless)")
+    fig.suptitle(title)
     return fig
 
 
