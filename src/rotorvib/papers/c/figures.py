@@ -84,7 +84,18 @@ def fig5(fr, paper):
                 f"Table 2 objective {paper['theta_table2']:g} rad")
     ax.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
            title="Fig 5: frequency response", ylim=(1e-2, 1e4))
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+    designs = labels(fr, "design")
+    for design, color, name in (("table2", "C1", "Table 2"), ("ga", "C3", "GA design")):
+        pw, pd = (float(fr[v].isel(design=designs.index(design))) for v in ("peak_w", "peak_D"))
+        text = f"{name}'s largest peak over all w: D = {pd:.3g} at w = {pw:.3g}"
+        if w[0] <= pw <= w[-1]:
+            ax.plot(pw, pd, "v", color=color, ms=7, label=text)
+        else:                                    # outside the plotted band: an arrow to it
+            edge = w[0] if pw < w[0] else w[-1]
+            ax.annotate("", xy=(edge, pd), xytext=(edge + (0.06 if pw < w[0] else -0.06), pd),
+                        arrowprops={"arrowstyle": "->", "color": color})
+            ax.plot([], [], "v", color=color, label=text + " (outside the band)")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=8)
     return fig
 
 
