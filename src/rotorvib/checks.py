@@ -8,16 +8,23 @@ import numbers
 import numpy as np
 
 
+def number(name: str, value, *, minimum: float = 0.0, inclusive: bool = False,
+           what: str = "") -> float:
+    """``value`` as a float; ``ValueError`` naming ``name`` unless it is finite and above
+    ``minimum`` (or equal to it, if ``inclusive``).  ``what`` adds a reason to the message."""
+    ok = np.isfinite(value) and (value >= minimum if inclusive else value > minimum)
+    if not ok:
+        raise ValueError(f"{name} = {float(value)!r}: must be a finite number "
+                         f"{'>=' if inclusive else '>'} {minimum:g}{what}")
+    return float(value)
+
+
 def require(obj, positive=(), nonnegative=()) -> None:
     """``ValueError`` naming the first field of ``obj`` that is not a finite number > 0 (those in
     ``positive``) or >= 0 (those in ``nonnegative``)."""
-    for names, ok, word in ((positive, lambda v: v > 0, "> 0"),
-                            (nonnegative, lambda v: v >= 0, ">= 0")):
+    for names, inclusive in ((positive, False), (nonnegative, True)):
         for name in names:
-            value = getattr(obj, name)
-            if not (np.isfinite(value) and ok(value)):
-                raise ValueError(f"{type(obj).__name__}.{name} = {float(value)!r}: must be a finite "
-                                 f"number {word}")
+            number(f"{type(obj).__name__}.{name}", getattr(obj, name), inclusive=inclusive)
 
 
 def finite_array(name: str, value, *, shape: tuple | None = None, dtype=float) -> np.ndarray:

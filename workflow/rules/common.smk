@@ -1,5 +1,6 @@
 # Helpers shared by all rules: configuration validation (before any job), paths, the figure
-# declaration, and the code fingerprint every script rule receives.
+# declaration, the code fingerprint every script rule receives and the configuration hash each
+# of its input datasets must carry.
 from snakemake.exceptions import WorkflowError
 from types import SimpleNamespace
 

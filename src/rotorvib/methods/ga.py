@@ -12,7 +12,7 @@ from pymoo.core.problem import Problem
 from pymoo.operators.crossover.sbx import SBX
 from pymoo.operators.mutation.pm import PM
 
-from rotorvib.checks import finite_array, integer
+from rotorvib.checks import finite_array, integer, number
 
 
 @dataclass(frozen=True)
@@ -83,10 +83,11 @@ def _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta):
     if lower.size == 0 or np.any(lower >= upper):
         raise ValueError(f"lower = {lower.tolist()}, upper = {upper.tolist()}: need "
                          "lower < upper in every variable")
-    integer("pop_size", pop_size, 2), integer("n_gen", n_gen, 1), integer("seed", seed, 0)
-    for name, eta in (("sbx_eta", sbx_eta), ("pm_eta", pm_eta)):
-        if not (np.isfinite(eta) and eta > 0):
-            raise ValueError(f"{name} = {eta!r}: must be a finite number > 0")
+    integer("pop_size", pop_size, 2)
+    integer("n_gen", n_gen, 1)
+    integer("seed", seed, 0)
+    number("sbx_eta", sbx_eta)
+    number("pm_eta", pm_eta)
     return lower, upper
 
 

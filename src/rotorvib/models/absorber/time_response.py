@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorvib.checks import number
 from rotorvib.methods.integrate import integrate
 from rotorvib.models.absorber.frequency_response import matrices
 from rotorvib.models.absorber.parameters import Rotor
@@ -51,8 +52,7 @@ def simulate(rotor: Rotor, sets, omega: float, t, *, model: str = "nonlinear",
     """Response from rest at times ``t``; returns ``q(t)``, shape ``(len(t), 1 + n_sets)``
     (``theta`` in rad, then each set's displacement in m).  ``model`` is ``"nonlinear"``
     (eqs 8-10) or ``"linear"`` (eq. 14)."""
-    if not (np.isfinite(omega) and omega > 0):
-        raise ValueError(f"omega = {omega!r}: must be a finite forcing frequency > 0 (rad/s)")
+    number("omega", omega, what=" (forcing frequency, rad/s)")
     n = 1 + len(sets)
     y0 = np.zeros(2 * n)
     if model == "nonlinear":

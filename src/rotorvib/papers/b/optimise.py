@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from rotorvib.checks import number
 from rotorvib.io.coords import label_coord
 from rotorvib.methods.ga import GAResult, minimise, minimise_many
 from rotorvib.models.balancer.simulate import metric
@@ -18,9 +19,8 @@ def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_pena
     "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch, set up by
     ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``) scores
     ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
-    if not (np.isfinite(censored_penalty) and censored_penalty >= 1):
-        raise ValueError(f"censored_penalty = {censored_penalty!r}: must be a finite number >= 1 "
-                         "(a censored run must never score as a balance time)")
+    number("censored_penalty", censored_penalty, minimum=1.0, inclusive=True,
+           what=" (a censored run must never score as a balance time)")
 
     def objectives(xs):
         metrics = setup.runs([setup.run_inputs(mass=mass, beta=beta, **problem)
