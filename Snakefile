@@ -8,16 +8,18 @@ min_version("9.0")
 configfile: "config/config.yaml"
 
 
-report: "workflow/report/workflow.rst"
-
-
 include: "workflow/rules/common.smk"
 include: "workflow/rules/paper_a.smk"
 include: "workflow/rules/paper_b.smk"
 include: "workflow/rules/paper_c.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/comparison.smk"
+include: "workflow/rules/report.smk"
 include: "workflow/rules/archive.smk"
+
+
+# The report's landing page is written from the comparison by rule report_text (report.smk).
+report: REPORT_TEXT["landing"]
 
 
 rule all:

@@ -60,3 +60,15 @@ def test_a_damaged_archive_raises_value_error(tmp_path, monkeypatch, damage):
                          "empty": b""}[damage])
     with pytest.raises(ValueError, match="not a complete rotorvib archive"):
         verify_archive(out)
+
+
+def test_generated_members_are_in_the_manifest(tmp_path, monkeypatch):
+    """A member written from text (the RO-Crate) is checked like a file."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "results").mkdir()
+    (tmp_path / "results/a.csv").write_text("x\n")
+    out = make_archive(["results/a.csv"], "r.tar.gz", generated={"ro-crate-metadata.json": "{}"})
+    assert verify_archive(out) == ["results/a.csv", "ro-crate-metadata.json"]
+    with tarfile.open(out) as tar:
+        assert tar.extractfile("ro-crate-metadata.json").read() == b"{}"
+        assert "2 files" in tar.extractfile(README).read().decode()

@@ -1,5 +1,6 @@
 """The discrepancy analysis: hypotheses, inversion, the join with the comparison table."""
 
+import csv
 import math
 
 import numpy as np
@@ -128,3 +129,23 @@ def test_a_model_that_does_not_give_the_reproduced_value_is_refused():
     ds = d.to_dataset({"t1": 6.5}, [], [], {"title": "t"})
     with pytest.raises(ValueError, match="t1: the discrepancy model gives 6.5"):
         d.analyse(table, values, [], [d.from_dataset(ds)])
+
+
+def test_totals_read_back_from_the_csv_equal_those_of_the_analyses(tmp_path):
+    """The report reads results/discrepancies.csv: a solved inversion is not a hypothesis, so
+    t2 (reproduced only by an inversion) stays ruled out."""
+    table = [_row("t1", 9.04, 5.98, "MAJOR"), _row("t2", 4.7, 3.9, "MAJOR")]
+    values = [{"paper": "B", "quantity": q, "value_text": t} for q, t in
+              (("t1", "9.04"), ("t2", "4.70"))]
+    reproduced = [Reproduced("B", "t1", 5.98, "")]
+    hyps = [d.Hypothesis("t1", "zeta / 10", "parameter slip", 9.05),
+            d.Hypothesis("t2", "zeta / 10", "parameter slip", 7.0)]
+    inv = [d.Inversion("t2", "zeta", 0.01, 0.0074, 0.001, 0.1, "solved")]
+    ds = d.to_dataset({"t1": 5.98, "t2": 3.9}, hyps, inv, {"title": "t"})
+    analyses = d.analyse(table, values, reproduced, [d.from_dataset(ds)])
+    d.write_files(analyses, tmp_path / "d.csv", tmp_path / "d.md")
+    with open(tmp_path / "d.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert any(r["kind"] == "inversion" and r["reproduces"] == "True" for r in rows)
+    assert d.totals_of_rows(rows) == d.totals(analyses)
+    assert d.totals(analyses).startswith("discrepancies (2): 1 reproduced by a hypothesis, 1 ")

@@ -38,3 +38,13 @@ def test_readme_follows_fig8_through_files_that_exist():
     walk = text.split("**Following one figure**", 1)[1].split("\n\n", 2)[1]
     files = re.findall(r"^\d\. `([^`]+)`", walk, re.M)
     assert len(files) <= 6 and all((ROOT / f).is_file() for f in files), files
+
+
+def test_readme_cites_the_papers_as_data_papers_yaml_does():
+    """The README's papers section quotes data/papers.yaml, the report's source."""
+    from rotorvib.io.config import load_yaml
+
+    text = " ".join((ROOT / "README.md").read_text().split())
+    for paper in load_yaml(ROOT / "data/papers.yaml").values():
+        assert " ".join(paper["citation"].split()) in text
+        assert " ".join(paper["summary"].split()) in text

@@ -251,16 +251,21 @@ def totals(table: list[dict]) -> list[str]:
             + ", ".join(f"{v} {counts.get(v, 0)}" for v in verdicts) for name, verdicts in groups]
 
 
+def verdict_definitions() -> str:
+    """The verdicts in words, with the tolerances this module applies."""
+    return (f"Verdicts. Printed numbers: MATCH (relative error <= {100 * MATCH_TOL:g} %), MINOR "
+            f"(<= {100 * MINOR_TOL:g} %), MAJOR (> {100 * MINOR_TOL:g} %), PAPER-INCONSISTENT (the paper's "
+            "own numbers imply another value, which the reproduction agrees with). Values the "
+            "paper does not print (source chosen or theory): EXPECTED (<= "
+            f"{100 * MATCH_TOL:g} %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT SUPPORTED, "
+            "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED.")
+
+
 def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path,
                       more_totals: tuple[str, ...] = ()) -> None:
     """``results/comparison.csv`` and ``.md``: the rows of :func:`build_table`, with the
     verdict totals and ``more_totals`` (e.g. of the discrepancy analysis) in the header."""
-    notes = ["Verdicts. Printed numbers: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR "
-             "(> 10 %), PAPER-INCONSISTENT (the paper's own numbers imply another value, which "
-             "the reproduction agrees with). Values the paper does not print (source chosen or "
-             "theory): EXPECTED (<= 1 %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT "
-             "SUPPORTED, DEPENDS (holds under some variants only; the explanation names them), "
-             "UNDETERMINED.",
+    notes = [verdict_definitions(),
              "Totals: " + "; ".join(totals(table) + list(more_totals))]
 
     def percent(row):

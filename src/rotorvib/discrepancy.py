@@ -336,9 +336,27 @@ def annotate(table: list[dict], analyses: list[Analysis]) -> list[dict]:
 
 def totals(analyses: list[Analysis]) -> str:
     """``"discrepancies (26): 9 reproduced by a hypothesis, 17 by none of their 12-45"``."""
-    hit = [a for a in analyses if a.reproduced_by]
-    missed = [len(a.hypotheses) for a in analyses if not a.reproduced_by]
-    text = f"discrepancies ({len(analyses)}): {len(hit)} reproduced by a hypothesis"
+    return _totals_text([(len(a.hypotheses), bool(a.reproduced_by)) for a in analyses])
+
+
+def totals_of_rows(rows: list[dict]) -> str:
+    """:func:`totals` from the rows of ``results/discrepancies.csv`` (:func:`table_rows`) read
+    back as text; inversions are not hypotheses."""
+    counts: dict[tuple[str, str], tuple[int, bool]] = {}
+    for row in rows:
+        key = (row["paper"], row["quantity"])
+        n, hit = counts.get(key, (0, False))
+        if row["kind"] != "inversion":
+            n, hit = n + 1, hit or row["reproduces"] == "True"
+        counts[key] = (n, hit)
+    return _totals_text(list(counts.values()))
+
+
+def _totals_text(counts: list[tuple[int, bool]]) -> str:
+    """The totals sentence from (number of hypotheses, reproduced by one) per missed number."""
+    hit = sum(1 for _, reproduced in counts if reproduced)
+    missed = [n for n, reproduced in counts if not reproduced]
+    text = f"discrepancies ({len(counts)}): {hit} reproduced by a hypothesis"
     if missed:
         text += (f", {len(missed)} ruled out (none of their {min(missed)}-{max(missed)} "
                  "hypotheses reproduces the printed value)")

@@ -7,6 +7,7 @@ from types import SimpleNamespace
 from rotorvib.io.config import ConfigError, config_hash, load_yaml, validate_config
 from rotorvib.io.datasets import INPUTS_CONFIG_PARAM, job_config
 from rotorvib.io.fingerprint import code_fingerprint
+from rotorvib.report import label, numbers_of_name, order_key
 
 try:
     # Snakemake's own loader keeps a duplicate key's last value: read each file strictly too.
@@ -18,6 +19,11 @@ except ConfigError as error:
 
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
 PAPER_VALUES = "data/paper_values.csv"
+REPORT_DIR = "results/report"
+REPORT_TEXT = {
+    "landing": f"{REPORT_DIR}/landing.rst",
+    "figure_captions": f"{REPORT_DIR}/figure_captions.rst",
+}
 
 
 def dataset(paper, name):
@@ -43,18 +49,51 @@ def benchmarks(name):
 
 # Figures of each paper, filled by the paper's .smk and drawn by the `figure` job (figures.smk);
 # FIGURES[paper][name] names the drawing function of rotorvib.papers.<paper>.figures, the
-# datasets it reads (argument -> dataset name) and its options.
+# datasets it reads (argument -> dataset name), what it shows (the first sentence of its
+# report caption, rotorvib.report), the comparison items it shows beyond those its name
+# numbers ("Fig 8" for fig8) and its options.
 FIGURES = {}
 
 
-def figure(function, datasets, caption="", **options):
+def figure(function, datasets, shows, items=(), **options):
     """A figure declaration: ``function(**datasets, paper=<paper's values>, **options)``."""
     return {
         "function": function,
         "datasets": datasets,
-        "caption": caption,
+        "shows": shows,
+        "items": list(items),
         "options": options,
     }
+
+
+# Tables shown in the report, filled by the papers' .smk: TABLES[paper][name] says what the
+# table shows and the comparison items beyond those its name numbers ("Table 2" for table2).
+TABLES = {}
+
+
+def report_table(paper, name, shows, items=()):
+    """Declare table ``name`` of ``paper`` ("all" for the whole project) and return the
+    ``report()`` flag's arguments: its generated caption, category and labels."""
+    TABLES.setdefault(paper, {})[name] = {"shows": shows, "items": list(items)}
+    return {
+        "caption": f"../../{table_caption(paper, name)}",
+        "category": "Comparison" if paper == "all" else f"Paper {paper.upper()}",
+        "subcategory": None if paper == "all" else "Tables",
+        "labels": report_labels(TABLES[paper], name, "table"),
+    }
+
+
+def report_labels(declared, name, kind):
+    """The report's labels of an output among the ``declared`` ones of its paper: its place
+    in the paper's order and its name ("Fig 8")."""
+    before = list(declared)[: list(declared).index(name)]
+    others = sum(1 for each in before if not numbers_of_name(each))
+    return {"#": order_key(name, others), kind: label(name, kind)}
+
+
+def table_caption(paper, name):
+    """The generated caption file of a table (rule report_text)."""
+    return f"{REPORT_DIR}/captions/{paper}_{name}.rst"
 
 
 def figure_inputs(wildcards):
@@ -68,13 +107,26 @@ RESULTS = {}
 
 
 def all_results():
-    """Every final file: each paper's results and the comparison."""
+    """Every final file: each paper's results, the comparison and the report's text."""
     files = [f for paper in sorted(RESULTS) for f in RESULTS[paper]]
-    return files + [
-        f"results/{name}.{ext}"
-        for name in ("comparison", "discrepancies")
-        for ext in ("csv", "md")
-    ]
+    return (
+        files
+        + [
+            f"results/{name}.{ext}"
+            for name in ("comparison", "discrepancies")
+            for ext in ("csv", "md")
+        ]
+        + report_text_files()
+    )
+
+
+def report_text_files():
+    """The report's landing page and the captions of every figure and table."""
+    return list(REPORT_TEXT.values()) + table_captions()
+
+
+def table_captions():
+    return [table_caption(paper, name) for paper in TABLES for name in TABLES[paper]]
 
 
 def results_of(paper, datasets, tables=()):

@@ -9,10 +9,10 @@ rule figure:
     output:
         report(
             "results/paper_{paper}/figures/{name}.png",
-            caption="../report/figure.rst",
+            caption=f"../../{REPORT_TEXT['figure_captions']}",
             category=lambda wc: f"Paper {wc.paper.upper()}",
             subcategory="Figures",
-            labels=lambda wc: {"paper": wc.paper.upper(), "figure": wc.name},
+            labels=lambda wc: report_labels(FIGURES[wc.paper], wc.name, "figure"),
         ),
     log:
         logs("figure_{paper}_{name}"),
@@ -24,7 +24,6 @@ rule figure:
         module=lambda wc: f"rotorvib.papers.{wc.paper}.figures",
         function=lambda wc: FIGURES[wc.paper][wc.name]["function"],
         options=lambda wc: FIGURES[wc.paper][wc.name]["options"],
-        caption=lambda wc: FIGURES[wc.paper][wc.name]["caption"],
     message:
         "Paper {wildcards.paper}: drawing figure {wildcards.name}"
     script:

@@ -1,26 +1,66 @@
 # Paper A: multiple scales and Lyapunov stability of the two-ball balancer (reconstructed model).
 
-A_CAPTION = (
-    "The paper's equations and caption values were lost in extraction: the model is digest A's "
-    "reconstruction and every parameter is chosen (config/config.yaml, paper_a). Claims: the "
-    "two-term multiple-scales solution is very close to Runge-Kutta; ball damping speeds "
-    "balancing up to an optimum; multiple scales and Lyapunov give identical stable regions. "
-    "See results/comparison.md."
-)
 A_CASE = {"zoom": A["zoom"], "beta": A["case"]["beta"]}
+# The paper's equations and caption values were lost in extraction: the model is digest A's
+# reconstruction and every parameter is chosen (config/config.yaml, paper_a).
+A_MODEL = " Reconstructed model; every parameter chosen (config paper_a)."
 FIGURES["a"] = {
-    "fig2": figure("fig2", {"resp": "responses"}, A_CAPTION, **A_CASE),
-    "fig3": figure("fig3", {"resp": "responses"}, A_CAPTION, **A_CASE),
-    "fig4": figure("fig4", {"resp": "responses"}, A_CAPTION, beta=A["case"]["beta"]),
+    "fig2": figure(
+        "fig2",
+        {"resp": "responses"},
+        "Radial response x/R of the rotor against dimensionless time: one-term and two-term "
+        "multiple-scales solutions and Runge-Kutta, with a zoomed window and the error of "
+        f"each multiple-scales solution against Runge-Kutta on a log scale.{A_MODEL}",
+        **A_CASE,
+    ),
+    "fig3": figure(
+        "fig3",
+        {"resp": "responses"},
+        "Tangential response y/R against dimensionless time: one-term and two-term "
+        "multiple-scales solutions and Runge-Kutta, with a zoomed window and the error "
+        f"panel.{A_MODEL}",
+        **A_CASE,
+    ),
+    "fig4": figure(
+        "fig4",
+        {"resp": "responses"},
+        "Angles of the two balls against dimensionless time by the three methods, with the "
+        f"balanced angles +/-arccos(-1/(2 rho)).{A_MODEL}",
+        items=["Section 3"],
+        beta=A["case"]["beta"],
+    ),
     "fig5": figure(
-        "fig5", {"resp": "responses"}, A_CAPTION, betas=A["fig5_6"]["betas"]
+        "fig5",
+        {"resp": "responses"},
+        f"Rotor response for three ball-damping ratios beta, one column each.{A_MODEL}",
+        betas=A["fig5_6"]["betas"],
     ),
     "fig6": figure(
-        "fig6", {"resp": "responses"}, A_CAPTION, betas=A["fig5_6"]["betas"]
+        "fig6",
+        {"resp": "responses"},
+        f"Ball angles for the same three ball-damping ratios beta, one column each.{A_MODEL}",
+        betas=A["fig5_6"]["betas"],
     ),
-    "fig7": figure("fig7", {"region": "stability_region"}, A_CAPTION),
-    "error_study": figure("error_study", {"err": "error_study"}, A_CAPTION),
-    "slow_flow": figure("slow_flow", {"flow": "slow_flow"}, A_CAPTION),
+    "fig7": figure(
+        "fig7",
+        {"region": "stability_region"},
+        "Stable region of the balanced state in the (speed, damping) plane by multiple scales "
+        f"and by Lyapunov's first method.{A_MODEL}",
+    ),
+    "error_study": figure(
+        "error_study",
+        {"err": "error_study"},
+        "Beyond the paper: the largest error of the one-term and two-term solutions against "
+        "Runge-Kutta as the initial distance from the balanced state shrinks, with the "
+        f"expected orders.{A_MODEL}",
+        items=["Error study"],
+    ),
+    "slow_flow": figure(
+        "slow_flow",
+        {"flow": "slow_flow"},
+        "Beyond the paper: the stability boundary of the small-mu slow flow against the exact "
+        f"one from the eigenvalues of the full linearisation.{A_MODEL}",
+    ),
 }
 
 

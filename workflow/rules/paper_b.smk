@@ -14,53 +14,118 @@ for _name, _study in B["balance_studies"].items():
 if _problems := existence_problems(B):
     raise WorkflowError("invalid configuration:\n  " + "\n  ".join(_problems))
 
-B_CAPTION = (
-    "Solid lines: the paper's printed kinematics (the reproduction); dashed: the consistent "
-    "kinematics. Red: the paper's stated values and claims. See results/comparison.md for "
-    "every stated value beside the reproduced one."
+# Every paper B figure draws the paper's printed kinematics (the reproduction) solid and the
+# consistent kinematics dashed, and the paper's stated values in red.
+B_STYLE = (
+    " Solid: the paper's printed kinematics (the reproduction); dashed: consistent kinematics; "
+    "red: the paper's values."
 )
 FIGURES["b"] = {
-    "fig2": figure("stability_map", {"st": "stability_fig2"}, B_CAPTION),
-    "fig3": figure("stability_map", {"st": "stability_fig3"}, B_CAPTION),
-    "fig4_5": figure("speed_profile", {"tr": "time_responses"}, B_CAPTION),
-    "fig6": figure("unbalanced_response", {"tr": "time_responses"}, B_CAPTION),
-    "fig7": figure("envelope_response", {"tr": "time_responses"}, B_CAPTION),
+    "fig2": figure(
+        "stability_map",
+        {"st": "stability_fig2"},
+        "Stability of the balanced state in the (beta, speed) plane from the eigenvalues of "
+        "the linearised equations, with the critical speed.",
+    ),
+    "fig3": figure(
+        "stability_map",
+        {"st": "stability_fig3"},
+        "Stability of the balanced state in the (ball mass, speed) plane, with the critical "
+        "speed and the existence bound of the balanced state.",
+    ),
+    "fig4_5": figure(
+        "speed_profile",
+        {"tr": "time_responses"},
+        "The run-up speed profile of eq. (37) and its angular acceleration.",
+    ),
+    "fig6": figure(
+        "unbalanced_response",
+        {"tr": "time_responses"},
+        f"Rotor amplitude r(t) without ball damping (beta = 0).{B_STYLE}",
+    ),
+    "fig7": figure(
+        "envelope_response",
+        {"tr": "time_responses"},
+        "Rotor amplitude r(t) of the paper's Fig 7 case with the envelope through its peaks, "
+        f"the balance threshold and the balance time.{B_STYLE}",
+    ),
     **{
         f"fig{number}": figure(
             "balance_against",
             {"study": "balance_beta"},
-            B_CAPTION,
+            f"Balance time against the ball-damping ratio beta for the three initial ball "
+            f"positions, at the {rank} unbalance eps_bar of the study.{B_STYLE}",
             select={"eps_bar": index},
         )
-        for index, number in enumerate((8, 9, 10))
+        for index, (number, rank) in enumerate(
+            ((8, "first"), (9, "second"), (10, "third"))
+        )
     },
-    "fig11": figure("responses", {"tr": "time_responses"}, B_CAPTION, prefix="fig11"),
+    "fig11": figure(
+        "responses",
+        {"tr": "time_responses"},
+        f"Rotor amplitude r(t) for three ball-damping ratios beta.{B_STYLE}",
+        prefix="fig11",
+    ),
     **{
         f"fig{number}": figure(
             "balance_against",
             {"study": "balance_mass"},
-            B_CAPTION,
+            f"Balance time against the ball mass m for the three initial ball positions, at "
+            f"the {rank} unbalance eps_bar of the study, with the optimum mass marked.{B_STYLE}",
             select={"eps_bar": index},
             marks={"m_opt": "optimum m"},
         )
-        for index, number in enumerate((12, 13, 14))
+        for index, (number, rank) in enumerate(
+            ((12, "first"), (13, "second"), (14, "third"))
+        )
     },
-    "fig15": figure("responses", {"tr": "time_responses"}, B_CAPTION, prefix="fig15"),
-    "fig16": figure("bearing_forces", {"tr": "time_responses"}, B_CAPTION),
-    "balance_eps_bar": figure(
-        "balance_against", {"study": "balance_eps_bar"}, B_CAPTION
+    "fig15": figure(
+        "responses",
+        {"tr": "time_responses"},
+        f"Rotor amplitude r(t) for three ball masses.{B_STYLE}",
+        prefix="fig15",
     ),
-    "ga_convergence": figure("ga_convergence", {"ga": "ga"}, B_CAPTION),
+    "fig16": figure(
+        "bearing_forces",
+        {"tr": "time_responses"},
+        f"Bearing force against time for the three (beta, m) cases of Table 2.{B_STYLE}",
+    ),
+    "balance_eps_bar": figure(
+        "balance_against",
+        {"study": "balance_eps_bar"},
+        "Beyond the paper: balance time against the unbalance eps_bar for the three initial "
+        f"ball positions.{B_STYLE}",
+    ),
+    "ga_convergence": figure(
+        "ga_convergence",
+        {"ga": "ga"},
+        "Convergence of the genetic algorithm of section 9 (best balance time per generation) "
+        "for each unbalance and initial condition, with its optimum (beta, m).",
+        items=["GA", "Section 9"],
+    ),
     "calibration_R": figure(
-        "calibration", {"forces": "forces"}, B_CAPTION, R=B["machine"]["R"]
+        "calibration",
+        {"forces": "forces"},
+        "The race radius R, which the paper does not state: the Table 2 peak forces computed "
+        "over a range of R, and the R that fits them.",
+        items=["Table 2"],
+        R=B["machine"]["R"],
     ),
     "basin": figure(
-        "basin", {"basin": "basin"}, B_CAPTION, ics=B["initial_conditions"]
+        "basin",
+        {"basin": "basin"},
+        "Beyond the paper: balance time over all initial positions of the two balls, with "
+        "the paper's three initial conditions marked.",
+        ics=B["initial_conditions"],
     ),
     "kinematics": figure(
         "kinematics_shift",
         {"beta": "balance_beta", "mass": "balance_mass"},
-        B_CAPTION,
+        "Beyond the paper: how much the balance times of Figs 8-14 change between the "
+        "printed and the consistent kinematics, and the paper's conclusion that ball mass "
+        "matters more than damping.",
+        items=["Section 10"],
     ),
 }
 
@@ -86,9 +151,15 @@ rule b_derivation_checks:
     output:
         csv=report(
             table("b", "derivation_checks", "csv"),
-            caption="../report/b_derivation_checks.rst",
-            category="Paper B",
-            subcategory="Tables",
+            **report_table(
+                "b",
+                "derivation_checks",
+                "Equations (2)-(34) re-derived with sympy from the kinetic energy (4), the "
+                "potential (5) and the Rayleigh function (6), each compared with the printed "
+                "one under three conventions for the disk angle: exactly w(t) t, the paper's "
+                "(the w'' t term dropped) and the consistent one (rate w). A FAIL row gives the "
+                "difference from the printed equation.",
+            ),
         ),
         md=table("b", "derivation_checks", "md"),
     log:
@@ -249,16 +320,25 @@ rule b_tables:
     output:
         table1=report(
             table("b", "table1", "csv"),
-            caption="../report/b_table1.rst",
-            category="Paper B",
-            subcategory="Tables",
+            **report_table(
+                "b",
+                "table1",
+                "Optimum ball mass (least mean balance time over the three initial conditions "
+                "of eq. 39) and that mean balance time against the operating speed, beside "
+                "the paper's values.",
+                items=["eq. 41"],
+            ),
         ),
         table1_md=table("b", "table1", "md"),
         table2=report(
             table("b", "table2", "csv"),
-            caption="../report/b_table2.rst",
-            category="Paper B",
-            subcategory="Tables",
+            **report_table(
+                "b",
+                "table2",
+                "Maximum bearing force and its decay time for the paper's three (beta, m) "
+                "cases, with the race radius R inferred from the paper's forces (Fig "
+                "calibration R), beside the paper's values.",
+            ),
         ),
         table2_md=table("b", "table2", "md"),
         kinematics=table("b", "kinematics", "md"),

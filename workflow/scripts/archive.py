@@ -1,8 +1,22 @@
-"""Rule archive: one tarball of all results with a SHA-256 manifest and restore notes."""
+"""Rule archive: one tarball of all results with a SHA-256 manifest, restore notes and an
+RO-Crate describing the run."""
 
 import sys
 
+import snakemake as snakemake_package
+
 from rotorvib.io.archive import make_archive
+from rotorvib.io.crate import CRATE, crate_metadata
+from rotorvib.io.provenance import git_date
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
-make_archive(list(snakemake.input), snakemake.output[0])
+inputs = snakemake.input
+crate = crate_metadata(
+    results=list(inputs.results), configuration=list(inputs.configuration),
+    code=list(inputs.code), date=git_date(),
+    title="rotorvib: reproductions of three rotor-dynamics papers",
+    description="Every dataset (CF-1.11 netCDF), table and figure of one run of the rotorvib "
+                "workflow, the HTML report, the run's configuration and commit.",
+    snakemake_version=snakemake_package.__version__)
+make_archive(list(inputs.results) + list(inputs.configuration) + list(inputs.code),
+             snakemake.output[0], generated={CRATE: crate})

@@ -26,7 +26,10 @@ README = "results/ARCHIVE_README.md"
 RESTORE_NOTES = """# rotorvib results archive
 
 This archive holds every dataset (netCDF), table and figure of one run of the rotorvib
-workflow, under their paths in the repository.
+workflow, under their paths in the repository, with the HTML report (`results/report.html`),
+the run's whole configuration and commit (`results/run/`), the Snakefile, the licence and the
+citation file. `ro-crate-metadata.json` describes it all as a Workflow Run RO-Crate (the
+workflow, the run, each file's checksum, format and licence).
 
 ## Restore without recomputing
 
@@ -75,12 +78,17 @@ def job_records(files) -> list[str]:
     return [n for n in names if Path(n).is_file()]
 
 
-def make_archive(files: list[str | Path], output: str | Path) -> Path:
+def make_archive(files: list[str | Path], output: str | Path,
+                 generated: dict[str, str] | None = None) -> Path:
     """Pack ``files`` (paths relative to the repository root) with their Snakemake job
-    records, a manifest and a README."""
+    records, the ``generated`` members (name -> text, e.g. the RO-Crate), a manifest of all of
+    them and a README."""
     files = sorted({Path(f).as_posix() for f in files})
     files += job_records(files)
-    manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files)
+    generated = dict(sorted((generated or {}).items()))
+    manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files) + "".join(
+        f"{hashlib.sha256(text.encode()).hexdigest()}  {name}\n"
+        for name, text in generated.items())
     output = Path(output)
     output.parent.mkdir(parents=True, exist_ok=True)
     with open(output, "wb") as raw, \
@@ -88,8 +96,10 @@ def make_archive(files: list[str | Path], output: str | Path) -> Path:
             tarfile.open(fileobj=gz, mode="w", format=tarfile.PAX_FORMAT) as tar:
         for f in files:
             tar.add(f, arcname=f, recursive=False, filter=_anonymise)
+        for name, text in generated.items():
+            _add_text(tar, name, text)
         _add_text(tar, MANIFEST, manifest)
-        _add_text(tar, README, RESTORE_NOTES.format(count=len(files)))
+        _add_text(tar, README, RESTORE_NOTES.format(count=len(files) + len(generated)))
     return output
 
 

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import importlib.metadata
+import os
 import subprocess
+from datetime import datetime, timezone
 from pathlib import Path
 
 #: Packages whose versions are recorded in every dataset.
@@ -21,6 +23,17 @@ def git_state(repo: str | Path = ".") -> tuple[str, bool]:
     except (OSError, subprocess.CalledProcessError):
         return "unknown", False
     return commit, bool(status.strip())
+
+
+def git_date(repo: str | Path = ".") -> str:
+    """ISO 8601 date of the commit checked out at ``repo`` (the archive's publication date, the
+    same for every build of one commit); ``SOURCE_DATE_EPOCH`` (else 0) outside git."""
+    try:
+        return subprocess.run(["git", "log", "-1", "--format=%cI"], cwd=repo,
+                              capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        epoch = int(os.environ.get("SOURCE_DATE_EPOCH", 0))
+        return datetime.fromtimestamp(epoch, timezone.utc).isoformat()
 
 
 def package_versions(names=RECORDED_PACKAGES) -> dict[str, str]:

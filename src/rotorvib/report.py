@@ -1,0 +1,219 @@
+"""The words of the HTML report, written from the comparison table so that they cannot disagree
+with ``results/comparison.md``.
+
+Snakemake renders each caption and the landing page as reStructuredText through Jinja2. Figure
+captions share one template (a rule's caption file cannot depend on its wildcards), which picks
+the caption of ``snakemake.wildcards``; each table has its own caption file. A figure or table
+is tied to the comparison rows whose ``item`` names it ("Fig 8", "Figs 8-10", "Table 2") and to
+any further items its declaration lists ("Error study").
+"""
+
+from __future__ import annotations
+
+import re
+from collections import Counter
+from pathlib import Path
+
+from rotorvib.comparison import (CLAIM_VERDICTS, EXPECTATION_VERDICTS, NUMERIC_VERDICTS,
+                                 totals, verdict_definitions)
+
+VERDICT_GROUPS = (("printed numbers", NUMERIC_VERDICTS),
+                  ("chosen or theoretical values", EXPECTATION_VERDICTS),
+                  ("claims", CLAIM_VERDICTS))
+# Verdicts that are findings: the paper and the reproduction disagree.
+FINDINGS = ("MAJOR", "PAPER-INCONSISTENT", "UNEXPECTED", "NOT SUPPORTED")
+_RST_SPECIAL = re.compile(r"([\\`*_|\[\]<>])")
+_ITEM = re.compile(r"^(Figs?|Tables?)\s+(\d+)(?:\s*[-–]\s*(\d+))?$")
+
+
+def rst_text(text: str) -> str:
+    """``text`` as literal reStructuredText inline content (markup characters escaped)."""
+    return _RST_SPECIAL.sub(r"\\\1", " ".join(str(text).split()))
+
+
+def numbers_of_name(name: str) -> tuple[int, ...]:
+    """The paper's figure or table numbers an output name stands for: ``fig4_5`` -> (4, 5),
+    ``table2`` -> (2,), ``basin`` -> () (beyond the paper)."""
+    match = re.fullmatch(r"(?:fig|table)(\d+(?:_\d+)*)", name)
+    return tuple(int(n) for n in match.group(1).split("_")) if match else ()
+
+
+def numbers_of_item(item: str) -> tuple[str, tuple[int, ...]]:
+    """``"Figs 8-10"`` -> ("figure", (8, 9, 10)); an item naming no figure or table -> ("", ())."""
+    match = _ITEM.match(item.strip())
+    if not match:
+        return "", ()
+    first = int(match.group(2))
+    last = int(match.group(3) or first)
+    kind = {"fig": "figure", "table": "table"}[match.group(1).rstrip("s").lower()]
+    return kind, tuple(range(first, last + 1))
+
+
+def label(name: str, kind: str = "figure") -> str:
+    """Reader's name of an output: ``fig4_5`` -> "Figs 4-5", ``table2`` -> "Table 2"; names
+    beyond the paper keep their words ("error study")."""
+    numbers = numbers_of_name(name)
+    word = {"figure": "Fig", "table": "Table"}[kind]
+    if not numbers:
+        return name.replace("_", " ")
+    if len(numbers) == 1:
+        return f"{word} {numbers[0]}"
+    return f"{word}s {numbers[0]}-{numbers[-1]}"
+
+
+def order_key(name: str, others_before: int) -> str:
+    """A sort key in the paper's order (the report sorts its entries by this string): the
+    paper's outputs by number ("02" ... "16"), then those beyond the paper in their declared
+    order ("beyond 1", ...; ``others_before`` of them are declared before this one)."""
+    numbers = numbers_of_name(name)
+    return f"{numbers[0]:02d}" if numbers else f"beyond {others_before + 1}"
+
+
+def rows_for(table: list[dict], paper: str, name: str, kind: str = "figure",
+             items: tuple[str, ...] = ()) -> list[dict]:
+    """Comparison rows of ``paper`` whose item names output ``name`` or is one of ``items``."""
+    numbers = set(numbers_of_name(name))
+
+    def names_it(row):
+        row_kind, row_numbers = numbers_of_item(row["item"])
+        return row["item"] in items or (row_kind == kind and numbers & set(row_numbers))
+
+    return [row for row in table if row["paper"].lower() == paper and names_it(row)]
+
+
+def _number(value) -> str:
+    return f"{float(value):.4g}"
+
+
+def statement(row: dict, claim: str = "", lead: str = "") -> str:
+    """One comparison row as a reST bullet: what the paper states (``claim``, else the
+    quantity's name), what we find, the verdict and its explanation; ``lead`` replaces the
+    verdict and item at the start."""
+    said = claim or row["quantity"]
+    if row["paper_value"] not in ("", None):
+        unit = f" {row['unit']}" if row["unit"] not in ("", "1", None) else ""
+        found = f"paper {_number(row['paper_value'])}{unit}, reproduced " \
+                f"{_number(row['reproduced'])}{unit}"
+        if row["rel_error"] not in ("", None):
+            found += f" ({100 * float(row['rel_error']):.1f} % off)"
+        said = f"{said}: {found}"
+    lead = f"**{rst_text(lead)}**" if lead else f"**{row['verdict']}** ({rst_text(row['item'])})"
+    explanation = f" {rst_text(row['explanation'])}" if row["explanation"] else ""
+    return f"- {lead} {rst_text(said)}.{explanation}"
+
+
+def caption(title: str, shows: str, rows: list[dict] | None = None,
+            claims: dict[tuple[str, str], str] | None = None) -> str:
+    """A figure's or table's caption: its title, what it shows, and every comparison row that
+    refers to it (``claims``: the paper's words for each quantity, from the paper-values file;
+    ``rows=None`` for a caption without statements)."""
+    lines = [f"**{rst_text(title)}.** {rst_text(shows)}", ""]
+    if rows:
+        lines += ["What the paper states, against the reproduction:", ""]
+        lines += [statement(row, (claims or {}).get((row["paper"], row["quantity"]), ""))
+                  for row in rows]
+    elif rows is not None:
+        lines += ["The paper states no value or claim here: the output is shown for what it "
+                  "adds to the reproduction."]
+    return "\n".join(lines) + "\n"
+
+
+def comparison_summary(table: list[dict]) -> str:
+    """The verdict definitions and totals of the comparison table."""
+    return f"{verdict_definitions()} Totals: {'; '.join(totals(table))}."
+
+
+def check_counts(rows: list[dict]) -> str:
+    """`` Checks: 28 PASS, 2 FAIL.`` for a table with a ``status`` column, else ``""``."""
+    counts = Counter(row["status"] for row in rows if "status" in row)
+    if not counts:
+        return ""
+    return " Checks: " + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())) + "."
+
+
+def figure_captions_template(captions: dict[tuple[str, str], str]) -> str:
+    """One Jinja2 template holding every figure caption, choosing by the job's wildcards
+    ``paper`` and ``name``; the captions themselves are raw (no Jinja inside)."""
+    parts = ['{% set key = snakemake.wildcards.paper ~ "/" ~ snakemake.wildcards.name %}']
+    for number, ((paper, name), text) in enumerate(sorted(captions.items())):
+        keyword = "if" if number == 0 else "elif"
+        parts += [f'{{% {keyword} key == "{paper}/{name}" %}}', "{% raw %}", text.rstrip(),
+                  "{% endraw %}"]
+    parts += ["{% else %}", "No caption was written for this figure: rerun the rule report_text.",
+              "{% endif %}"]
+    return "\n".join(parts) + "\n"
+
+
+def verdict_counts(table: list[dict]) -> dict[str, Counter]:
+    """Verdict counts per paper."""
+    counts: dict[str, Counter] = {}
+    for row in table:
+        counts.setdefault(row["paper"], Counter())[row["verdict"]] += 1
+    return counts
+
+
+def _list_table(header: list[str], rows: list[list[str]]) -> list[str]:
+    lines = [".. list-table::", "   :header-rows: 1", ""]
+    for row in [header] + rows:
+        lines.append("   * - " + row[0])
+        lines += [f"     - {cell}" for cell in row[1:]]
+    return lines + [""]
+
+
+def totals_table(table: list[dict]) -> list[str]:
+    """reST list-table of the verdict totals: one row per paper and a total."""
+    counts = verdict_counts(table)
+    papers = sorted(counts)
+    everything = sum(counts.values(), Counter())
+    verdicts = [v for _, group in VERDICT_GROUPS for v in group]
+    rows = [[f"`Paper {p}`_"] + [str(counts[p][v]) for v in verdicts] for p in papers]
+    rows.append(["all"] + [str(everything[v]) for v in verdicts])
+    return _list_table(["paper"] + verdicts, rows)
+
+
+def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]:
+    """The disagreements, grouped by paper and item: one bullet each, with its verdict counts
+    and its largest miss (the first row where no number is printed), stated as in a caption
+    with the first clause of the explanation."""
+    groups: dict[tuple[str, str], list[dict]] = {}
+    for row in table:
+        if row["verdict"] in FINDINGS:
+            groups.setdefault((row["paper"], row["item"]), []).append(row)
+    lines = []
+    for (paper, item), rows in sorted(groups.items(), key=lambda group: group[0][0]):
+        verdicts = ", ".join(f"{n} {v}" for v, n in sorted(Counter(r["verdict"] for r in rows).items()))
+        worst = max(rows, key=lambda r: float(r["rel_error"] or -1))
+        first = re.split(r"; |\. (?=[A-Z])", worst["explanation"], maxsplit=1)[0]
+        lines.append(statement({**worst, "explanation": first},
+                               claims.get((worst["paper"], worst["quantity"]), ""),
+                               lead=f"Paper {paper}, {item} ({verdicts})"))
+    return lines
+
+
+def landing_page(table: list[dict], claims: dict[tuple[str, str], str], papers: dict[str, dict],
+                 discrepancy_totals: str) -> str:
+    """The report's first page: what was reproduced, verdict totals, the findings, the papers
+    (``papers``: letter -> {"citation", "summary"}) with links to their categories."""
+    title = "rotorvib: three rotor-dynamics papers reproduced from first principles"
+    lines = [title, "=" * len(title), "",
+             "Every figure and table of the three papers is regenerated from the equations with "
+             "the parameters of ``config/config.yaml`` and set beside the paper's own numbers. "
+             f"{len(table)} stated values and claims are compared in `Comparison`_; each "
+             "figure's caption repeats the rows that refer to it.", "",
+             "Verdicts", "--------", "",
+             rst_text(verdict_definitions()), ""]
+    lines += totals_table(table)
+    lines += [f"Discrepancy analysis: {rst_text(discrepancy_totals)}.", "",
+              "Findings", "--------", "",
+              "Where the paper and the reproduction disagree (verdicts "
+              + ", ".join(FINDINGS) + "):", ""]
+    lines += findings(table, claims) + ["", "Papers", "------", ""]
+    for letter, paper in sorted(papers.items()):
+        lines += [f"- `Paper {letter}`_: {rst_text(paper['citation'])} "
+                  f"{rst_text(paper['summary'])}"]
+    return "\n".join(lines) + "\n"
+
+
+def write(path: str | Path, text: str) -> None:
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_text(text, encoding="utf-8")

@@ -1,0 +1,15 @@
+"""Rule run_record: the run's whole (validated) configuration and its commit, as files."""
+
+import sys
+from pathlib import Path
+
+import yaml
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+
+commit, dirty = snakemake.params.commit
+Path(snakemake.output.config).write_text(
+    "# The whole configuration of this run (config files and overrides merged, validated)\n"
+    + yaml.safe_dump(dict(snakemake.params.config), sort_keys=True), encoding="utf-8")
+Path(snakemake.output.commit).write_text(
+    f"commit {commit}\nuncommitted changes {'yes' if dirty else 'no'}\n", encoding="utf-8")
