@@ -68,3 +68,22 @@ def test_known_limits():
     grid = stability.max_real_part(0.01, 1.0, 0.05, beta, omega)
     assert grid.shape == (9, 7)
     assert grid[0, 0] == pytest.approx(stability.max_real_part(0.01, 1.0, 0.05, 0.1, 0.5))
+
+
+def test_the_slow_flow_boundary_is_exactly_omega_one_and_the_exact_one_is_smooth():
+    """Digest A's small-mu slow flow loses stability exactly at Omega = 1 (the sign of
+    1 - Omega^2 in Delta); the boundaries are located between grid speeds, not on them, so a
+    coarse grid gives neither a zigzag nor a staircase. As mu -> 0 the exact boundary tends
+    to the slow flow's."""
+    from rotorvib.papers.a.studies import slow_flow_dataset
+
+    betas, omegas = np.linspace(0.2, 2.0, 4), np.linspace(0.5, 3.0, 26)  # grid step 0.1
+    ds = slow_flow_dataset(0.01, 1.0, 0.05, betas, omegas)
+    np.testing.assert_allclose(ds.critical_speed_slow_flow, 1.0, atol=1e-7)
+    exact = ds.critical_speed_exact.values
+    assert np.all(np.diff(exact) < 0)  # falls with beta, never flat between grid points
+    for beta, onset in zip(betas, exact):
+        below, above = stability.max_real_part(0.01, 1.0, 0.05, beta, onset + np.array([-1e-6, 1e-6]))
+        assert below > 0 > above
+    small = slow_flow_dataset(1e-4, 1.0, 0.05, betas, omegas).critical_speed_exact.values
+    assert np.all(np.abs(small - 1) < np.abs(exact - 1))

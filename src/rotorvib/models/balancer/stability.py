@@ -21,6 +21,7 @@ from functools import lru_cache
 
 import numpy as np
 import sympy as sp
+from scipy.optimize import brentq
 
 MU, RHO, ZETA, BETA, OMEGA = sp.symbols("mu rho zeta beta Omega", positive=True)
 TAU = sp.Symbol("tau", real=True)
@@ -154,3 +155,18 @@ def polynomial_roots(mu, rho, zeta, beta, omega) -> np.ndarray:
     companion[..., 0, :] = -monic
     companion[..., np.arange(1, 8), np.arange(7)] = 1.0
     return np.linalg.eigvals(companion)
+
+
+def stability_onsets(growth_of, omega_bar, growth, *, xtol: float = 1e-8) -> np.ndarray:
+    """Speeds at which each row of ``growth`` (rows x ``omega_bar``) turns from unstable to
+    stable with rising speed, located exactly: the root of ``growth_of(row, omega)`` between the
+    two grid speeds that bracket the first sign change (Brent's method, to ``xtol``).  NaN for a
+    row that never turns stable on the grid or is stable from its first speed on."""
+    onsets = np.full(growth.shape[0], np.nan)
+    for i, row in enumerate(growth):
+        turns = np.flatnonzero((row[:-1] >= 0) & (row[1:] < 0))
+        if turns.size:
+            j = turns[0]
+            onsets[i] = brentq(lambda w: float(growth_of(i, w)), omega_bar[j], omega_bar[j + 1],
+                               xtol=xtol)
+    return onsets

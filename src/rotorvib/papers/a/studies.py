@@ -178,25 +178,31 @@ def slow_flow_growth(mu, rho, zeta, beta, omega, h=1e-7) -> float:
 
 
 def slow_flow_dataset(mu, rho, zeta, betas, omegas) -> xr.Dataset:
-    """Stability boundary of the slow flow against the exact (Lyapunov) one over (beta, Omega)."""
+    """Stability boundary of the slow flow against the exact (Lyapunov) one over (beta, Omega);
+    on each beta the boundary is the root of the growth rate between the grid speeds that
+    bracket its sign change (theory: exactly Omega = 1 for the slow flow)."""
+    betas, omegas = np.asarray(betas, float), np.asarray(omegas, float)
     slow = np.array([[slow_flow_growth(mu, rho, zeta, b, w) for w in omegas] for b in betas])
-    B, W = np.meshgrid(np.asarray(betas, float), np.asarray(omegas, float), indexing="ij")
+    B, W = np.meshgrid(betas, omegas, indexing="ij")
     exact = stability.max_real_part(mu, rho, zeta, B, W)
+    onsets = {
+        "slow": stability.stability_onsets(
+            lambda i, w: slow_flow_growth(mu, rho, zeta, betas[i], w), omegas, slow),
+        "exact": stability.stability_onsets(
+            lambda i, w: stability.max_real_part(mu, rho, zeta, betas[i], w), omegas, exact)}
     return xr.Dataset(
         {"growth_slow_flow": (("beta", "omega"), slow,
                               {"long_name": "largest real part, small-mu slow flow (slow time)",
                                "units": "1"}),
          "growth_exact": (("beta", "omega"), exact,
                           {"long_name": "largest real part, full linearisation", "units": "1"}),
-         "critical_speed_slow_flow": ("beta", _critical_speed(slow < 0, omegas),
+         "critical_speed_slow_flow": ("beta", onsets["slow"],
                                       {"long_name": "lowest stable speed, slow flow", "units": "1"}),
-         "critical_speed_exact": ("beta", _critical_speed(exact < 0, omegas),
+         "critical_speed_exact": ("beta", onsets["exact"],
                                   {"long_name": "lowest stable speed, full linearisation",
                                    "units": "1"})},
-        coords={"beta": ("beta", np.asarray(betas, float), {"long_name": "ball damping ratio",
-                                                            "units": "1"}),
-                "omega": ("omega", np.asarray(omegas, float), {"long_name": "speed ratio Omega",
-                                                               "units": "1"})},
+        coords={"beta": ("beta", betas, {"long_name": "ball damping ratio", "units": "1"}),
+                "omega": ("omega", omegas, {"long_name": "speed ratio Omega", "units": "1"})},
         attrs=_attrs("small-mu slow flow against the exact stability boundary",
                      f"Beyond the paper: mu = {mu}, rho = {rho}, zeta = {zeta}", "digest A"),
     )

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
-from scipy.optimize import brentq
 
 from rotorvib.io.coords import axis_coord
 from rotorvib.models.balancer import stability
@@ -27,21 +26,6 @@ def growth_rate(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray
     return growth
 
 
-def stability_onsets(growth_of, omega_bar, growth, *, xtol: float = 1e-8) -> np.ndarray:
-    """Speeds at which each row of ``growth`` (rows x ``omega_bar``) turns from unstable to
-    stable with rising speed, located exactly: the root of ``growth_of(row, omega)`` between the
-    two grid speeds that bracket the first sign change (Brent's method, to ``xtol``).  NaN for a
-    row that never turns stable on the grid or is stable from its first speed on."""
-    onsets = np.full(growth.shape[0], np.nan)
-    for i, row in enumerate(growth):
-        turns = np.flatnonzero((row[:-1] >= 0) & (row[1:] < 0))
-        if turns.size:
-            j = turns[0]
-            onsets[i] = brentq(lambda w: float(growth_of(i, w)), omega_bar[j], omega_bar[j + 1],
-                               xtol=xtol)
-    return onsets
-
-
 def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where,
                       marginal: float) -> xr.Dataset:
     """Growth rate of the balanced state (largest real part of the eigenvalues, in units of
@@ -56,7 +40,7 @@ def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where,
     growth = growth_rate(mb, eps_bar, zeta, bt, W, n)
     state = np.select([np.isnan(growth), np.abs(growth) <= marginal, growth < 0], [2, 3, 1],
                       0).astype(np.int8)
-    onsets = stability_onsets(
+    onsets = stability.stability_onsets(
         lambda i, w: growth_rate(mb[i, 0], eps_bar, zeta, bt[i, 0], w, n), omega_bar,
         np.where(np.abs(growth) <= marginal, 0.0, growth))
     names = {"m_bar": ("ball/disk mass ratio m/M", "1"), "beta": ("ball damping ratio beta", "1")}

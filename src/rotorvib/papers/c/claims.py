@@ -120,18 +120,26 @@ def _nearest(values, to: float) -> float:
     return float(values[int(np.argmin(np.abs(values - to)))])
 
 
-def frequency_rows(fr: xr.Dataset, claims: dict) -> list[Reproduced]:
-    """Fig 5: the undamped peaks are the undamped natural frequencies next to the sampled
-    maxima (D is unbounded there), the damped designs are compared by their true peaks."""
+def undamped_peaks(fr: xr.Dataset) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Fig 5's undamped peaks: the sampled maxima of Table 2's undamped D nearest w = 1 on
+    either side, and the undamped natural frequencies next to them, where D is unbounded
+    (``((sampled_low, sampled_high), (w_low, w_high))``)."""
     w = fr.w.values
-    D_u = fr.D_table2_undamped.values
-    peaks_w, _ = _local_maxima(w, D_u)
+    peaks_w, _ = _local_maxima(w, fr.D_table2_undamped.values)
     low, high = peaks_w[peaks_w < 1], peaks_w[peaks_w > 1]
     if low.size == 0 or high.size == 0:
         raise ValueError("the undamped response has no peak on one side of w = 1: widen the "
                          "frequency range (paper_c.frequency_response)")
     natural = fr.natural_w_table2_undamped.values
-    w_low, w_high = _nearest(natural, low[-1]), _nearest(natural, high[0])
+    return (low[-1], high[0]), (_nearest(natural, low[-1]), _nearest(natural, high[0]))
+
+
+def frequency_rows(fr: xr.Dataset, claims: dict) -> list[Reproduced]:
+    """Fig 5: the undamped peaks are the undamped natural frequencies next to the sampled
+    maxima (D is unbounded there), the damped designs are compared by their true peaks."""
+    w = fr.w.values
+    D_u = fr.D_table2_undamped.values
+    (sampled_low, sampled_high), (w_low, w_high) = undamped_peaks(fr)
     zero_at = w[np.argmin(D_u)]
     D1 = {name: float(np.interp(1.0, w, fr[name].values)) for name in ("D_table2_undamped",
                                                                         "D_table2", "D_ga")}
@@ -143,8 +151,8 @@ def frequency_rows(fr: xr.Dataset, claims: dict) -> list[Reproduced]:
                 "falls")
     return [
         _row("omega_n", float(fr.omega_n), "sqrt(k_t/J) with J = M R^2/2 (Table 1)"),
-        _row("undamped_peak_low", w_low, undamped.format(low[-1])),
-        _row("undamped_peak_high", w_high, undamped.format(high[0])),
+        _row("undamped_peak_low", w_low, undamped.format(sampled_low)),
+        _row("undamped_peak_high", w_high, undamped.format(sampled_high)),
         _claim("fig5_undamped_zero", abs(zero_at - 1) <= 0.01,
              f"to within 1 % of resonance: the "
              f"undamped amplitude vanishes at w = {zero_at:.4f}, the frequency sqrt(2k/m) of "

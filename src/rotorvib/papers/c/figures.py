@@ -10,6 +10,7 @@ import numpy as np
 
 from rotorvib.io.coords import labels, pick
 from rotorvib.io.plotting import figure, paper_hline, paper_point, paper_vline
+from rotorvib.papers.c.claims import undamped_peaks
 
 NONLINEAR = 1  # index of "nonlinear eqs. (8)-(10)" on the model axis of the time responses
 CASES = {"none": "no absorber", "single": "single absorber, Den Hartog (stand-in for ref. [8])",
@@ -72,7 +73,12 @@ def fig5(fr, paper):
     fig, ax = figure(figsize=(7.0, 5.6))
     w = fr.w.values
     ax.semilogy(w, fr.D_none.values, "k", lw=1, label="no absorber")
-    ax.semilogy(w, fr.D_table2_undamped.values, lw=1, label="Table 2, zero damping")
+    undamped = ax.semilogy(w, fr.D_table2_undamped.values, lw=1, label="Table 2, zero damping")
+    poles = undamped_peaks(fr)[1]  # unbounded there: the sampled peaks are where the grid falls
+    for x in poles:
+        ax.axvline(x, color=undamped[0].get_color(), ls=":", lw=1.2)
+    ax.plot([], [], color=undamped[0].get_color(), ls=":", lw=1.2,
+            label=f"zero damping: D unbounded at w = {poles[0]:.4f}, {poles[1]:.4f}")
     ax.semilogy(w, fr.D_table2.values, lw=1.6, label="Table 2 (optimum of the paper)")
     ax.semilogy(w, fr.D_table2_printed_det.values, ":", lw=1.2,
                 label="Table 2 with the printed det(A)")
