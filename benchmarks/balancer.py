@@ -1,14 +1,16 @@
-"""Benchmark of the ball-balancer engine against scipy's solve_ivp (issue 3).
+"""Benchmark of the ball-balancer engine against scipy's solve_ivp and numbalsoda.
 
 Paper B's Fig 7 run (run-up of eq. 37, printed kinematics, two balls; machine, run and balance
-criterion from ``config/config.yaml``, run from the repository root).  Prints the wall time of one run
-with the engine (default tolerances) and with solve_ivp RK45 and DOP853 at rtol 1e-8 -- the plain
-baseline runs the same right-hand side as ordinary Python (``rhs_fixed.py_func``), a second one
-hands scipy the compiled right-hand side (so that ratio isolates the integrator) -- the ratios,
-the balance-time differences, the time of a 1000-run batch on all cores, and the
-cached-compilation time.
+criterion from ``config/config.yaml``, run from the repository root).  Every integrator -- the
+engine, ``solve_ivp`` RK45 and DOP853 with the right-hand side as plain Python
+(``rhs_fixed.py_func``) and compiled, numbalsoda's ``dop853`` and ``lsoda`` (a benchmark-only
+dependency, ``benchmarks/requirements.txt``) on the same compiled right-hand side -- runs at the
+loosest tolerance of a ladder (rtol 1e-5 ... 1e-10, atol = 1e-3 rtol) whose balance time lies
+within ``--target`` seconds of a reference (the engine at rtol 1e-12), so that the ratios
+compare equal accuracy; then the time of a batch of run-ups on all cores and the
+cached-compilation time of a fresh process.
 
-    python -m benchmarks.balancer [--runs 1000] [--convergence]
+    python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence]
 
 ``--convergence`` prints the convergence study behind the engine's default tolerances
 (``rotorvib.models.balancer.simulate.RTOL, ATOL``): balance time, envelope time and peak force of the
@@ -53,7 +55,15 @@ def balance_time_of(t, r):
     return t[i] + (r[i] - R_THR) / (r[i] - r[i + 1]) * (t[i + 1] - t[i])
 
 
-def scipy_run(p, y0, method, compiled):
+TIMES = np.arange(int(round(T_END / DT)) + 1) * DT
+LADDER = (1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10)
+
+
+def engine_run(p, y0, rtol):
+    return run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3).balance_time
+
+
+def scipy_run(p, y0, rtol, method, compiled):
     rhs = engine.rhs_fixed if compiled else engine.rhs_fixed.py_func
 
     def f(t, y):
@@ -61,11 +71,46 @@ def scipy_run(p, y0, method, compiled):
         rhs(t, y, p, dy)
         return dy
 
-    t = np.arange(int(round(T_END / DT)) + 1) * DT
-    start = time.perf_counter()
-    sol = solve_ivp(f, (0.0, T_END), y0, method=method, rtol=1e-8, atol=1e-11, t_eval=t)
-    elapsed = time.perf_counter() - start
-    return elapsed, balance_time_of(t, np.hypot(sol.y[0], sol.y[1])), sol.nfev
+    sol = solve_ivp(f, (0.0, T_END), y0, method=method, rtol=rtol, atol=rtol * 1e-3,
+                    t_eval=TIMES)
+    return balance_time_of(TIMES, np.hypot(sol.y[0], sol.y[1]))
+
+
+def numbalsoda_solvers(n_state, n_param):
+    """numbalsoda's ``dop853`` and ``lsoda`` on the engine's compiled right-hand side, as
+    ``{name: run(p, y0, rtol)}``; empty where numbalsoda is not installed."""
+    try:
+        import numbalsoda
+    except ImportError:
+        return {}
+    from numba import carray, cfunc
+
+    rhs_fixed = engine.rhs_fixed
+
+    @cfunc(numbalsoda.lsoda_sig)
+    def rhs(t, u, du, p):
+        rhs_fixed(t, carray(u, (n_state,)), carray(p, (n_param,)), carray(du, (n_state,)))
+
+    def runner(solver):
+        def run_one(p, y0, rtol):
+            usol, ok = solver(rhs.address, y0.copy(), TIMES, data=p.copy(), rtol=rtol,
+                              atol=rtol * 1e-3, mxstep=10**8)
+            return balance_time_of(TIMES, np.hypot(usol[:, 0], usol[:, 1])) if ok else np.nan
+        return run_one
+
+    return {"numbalsoda dop853, compiled rhs": runner(numbalsoda.dop853),
+            "numbalsoda lsoda, compiled rhs": runner(numbalsoda.lsoda)}
+
+
+def at_equal_accuracy(run_one, p, y0, reference, target, repeats):
+    """The loosest rtol of :data:`LADDER` whose balance time is within ``target`` of
+    ``reference``, and the best of ``repeats`` timed runs there: ``(rtol, seconds, error)``."""
+    for rtol in LADDER:
+        error = abs(run_one(p, y0, rtol) - reference)
+        if error <= target:
+            elapsed, _ = best_of(repeats, lambda: run_one(p, y0, rtol))
+            return rtol, elapsed, error
+    return np.nan, np.nan, np.nan
 
 
 def best_of(n, fn):
@@ -90,6 +135,8 @@ def convergence(p, y0):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=1000)
+    parser.add_argument("--target", type=float, default=1e-6,
+                        help="balance-time error allowed against the reference (s)")
     parser.add_argument("--convergence", action="store_true",
                         help="print the tolerance convergence study instead")
     args = parser.parse_args()
@@ -98,16 +145,23 @@ def main():
         convergence(p, y0)
         return
     run(engine.FIXED, p, y0, BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT))  # compile
-    t_engine, res = best_of(5, lambda: run(engine.FIXED, p, y0, CRITERION))
-    print(f"{'engine (DOPRI5, rtol 1e-8, numba)':36s} {t_engine * 1e3:8.1f} ms   balance time "
-          f"{res.balance_time:.4f} s   ({res.n_steps} steps)")
-    for compiled in (False, True):
-        for method in ("RK45", "DOP853"):
-            elapsed, tb, nfev = scipy_run(p, y0, method, compiled)
+    reference = engine_run(p, y0, 1e-12)
+    integrators = {"engine (DOPRI5, numba)": engine_run,
+                   **numbalsoda_solvers(y0.size, p.size)}
+    for compiled in (True, False):
+        for method in ("DOP853", "RK45"):
             label = f"solve_ivp {method}, {'compiled' if compiled else 'plain Python'} rhs"
-            print(f"{label:36s} {elapsed * 1e3:8.1f} ms   balance time {tb:.4f} s   "
-                  f"({nfev} evaluations)   ratio {elapsed / t_engine:5.0f}x   "
-                  f"|dt_balance| = {abs(tb - res.balance_time):.1e} s")
+            integrators[label] = (lambda m, c: lambda p_, y_, r: scipy_run(p_, y_, r, m, c))(
+                method, compiled)
+    print(f"balance time within {args.target:g} s of {reference:.9f} s (engine, rtol 1e-12); "
+          "best of 3 runs each")
+    print(f"{'integrator':36s} {'rtol':>6} {'one run':>10} {'ratio':>7} {'error (s)':>10}")
+    base = None
+    for label, run_one in integrators.items():
+        rtol, elapsed, error = at_equal_accuracy(run_one, p, y0, reference, args.target, 3)
+        base = base or elapsed
+        print(f"{label:36s} {rtol:6.0e} {elapsed * 1e3:8.1f} ms {elapsed / base:6.2f}x "
+              f"{error:10.1e}")
     rng = np.random.default_rng(1)
     params = np.repeat(p[None], args.runs, axis=0)
     params[:, 6] *= rng.uniform(0.1, 1.0, args.runs)              # ball damping D

@@ -86,3 +86,16 @@ def test_config_check_command_gives_file_line_and_column(tmp_path, capsys):
     assert "config key 'paper_c.rotor.M': -5.0 is not allowed" in capsys.readouterr().out
     assert main(["--schema", str(ROOT / "config/schema.yaml"), str(ROOT / "config/config.yaml"),
                  str(ROOT / "config/test/config.yaml")]) == 0
+
+
+def test_nested_command_line_overrides_are_read_as_yaml():
+    """Snakemake leaves the values inside `--config paper_c='{den_hartog: {d: 0.09}}'` as
+    text; they are typed as a configuration file would type them."""
+    from rotorvib.io.config import typed_overrides
+
+    given = {"paper_c": {"den_hartog": {"d": "0.09"}, "ga": {"seed": "7", "tol": "1e-9"}},
+             "paper_b": {"kinematics": ["printed", "consistent"]}, "top": 3}
+    assert typed_overrides(given) == {
+        "paper_c": {"den_hartog": {"d": 0.09}, "ga": {"seed": 7, "tol": 1e-9}},
+        "paper_b": {"kinematics": ["printed", "consistent"]}, "top": 3}
+    assert typed_overrides({"a": {"b": "[unclosed"}}) == {"a": {"b": "[unclosed"}}

@@ -166,6 +166,8 @@ def test_config_change_reruns_exactly_the_dependent_jobs(run_dir, tmp_path):
     expected = downstream_outputs(records, lambda r: r["rule"] == "c_time_response")
     assert "results/paper_c/figures/fig4.png" in expected
     assert planned_outputs(run_dir, str(change)) == expected
+    # the same override on the command line: its nested value is read as YAML, a number
+    assert planned_outputs(run_dir, "--config", 'paper_c={den_hartog: {d: 0.09}}') == expected
     change.write_text("paper_b:\n  balance_studies:\n    eps_bar:\n      fixed: {beta: 0.5, "
                       "mass: 0.01}\n")
     assert planned_outputs(run_dir, str(change)) == {

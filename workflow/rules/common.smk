@@ -4,7 +4,15 @@
 from snakemake.exceptions import WorkflowError
 from types import SimpleNamespace
 
-from rotorvib.io.config import ConfigError, config_hash, load_yaml, validate_config
+from snakemake.utils import update_config
+
+from rotorvib.io.config import (
+    ConfigError,
+    config_hash,
+    load_yaml,
+    typed_overrides,
+    validate_config,
+)
 from rotorvib.io.datasets import INPUTS_CONFIG_PARAM, job_config
 from rotorvib.io.fingerprint import code_fingerprint
 from rotorvib.report import label, numbers_of_name, order_key
@@ -13,6 +21,8 @@ try:
     # Snakemake's own loader keeps a duplicate key's last value: read each file strictly too.
     for _path in workflow.configfiles:
         load_yaml(_path)
+    # and it leaves the values inside a nested `--config` override as text: type them.
+    update_config(config, typed_overrides(workflow.config_settings.overwrite_config))
     config.update(validate_config(config, load_yaml("config/schema.yaml")))
 except ConfigError as error:
     raise WorkflowError(str(error)) from None

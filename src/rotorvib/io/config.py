@@ -75,6 +75,30 @@ def load_yaml(path: str | Path) -> dict:
     return data
 
 
+def typed_overrides(overrides: dict) -> dict:
+    """``--config`` overrides with the values inside nested keys read as YAML.
+
+    Snakemake reads ``--config paper_c='{den_hartog: {d: 0.09}}'`` with YAML's base loader,
+    which leaves every nested value a string ("0.09"); each such string is read again here as
+    a YAML value (as in a configuration file: ``0.09`` and ``1e-9`` are numbers, ``printed``
+    stays a string). Top-level values, which Snakemake already types, are kept."""
+
+    def typed(value):
+        if isinstance(value, dict):
+            return {key: typed(item) for key, item in value.items()}
+        if isinstance(value, list):
+            return [typed(item) for item in value]
+        if isinstance(value, str):
+            try:
+                return yaml.load(value, Loader=_StrictLoader)
+            except yaml.YAMLError:
+                return value
+        return value
+
+    return {key: typed(value) if isinstance(value, (dict, list)) else value
+            for key, value in overrides.items()}
+
+
 def _fill_defaults(instance: Any, schema: dict) -> None:
     """Insert schema defaults for absent properties, recursively (in place)."""
     if not isinstance(instance, dict) or schema.get("type") != "object":
