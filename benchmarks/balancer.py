@@ -2,7 +2,7 @@
 
 Paper B's Fig 7 run (run-up of eq. 37, printed kinematics, two balls; machine, run and balance
 criterion from ``config/config.yaml``, run from the repository root).  Every integrator -- the
-engine, ``solve_ivp`` RK45 and DOP853 with the right-hand side as plain Python
+engine with DOPRI5 and with DOP853, ``solve_ivp`` RK45 and DOP853 with the right-hand side as plain Python
 (``rhs_fixed.py_func``) and compiled, numbalsoda's ``dop853`` and ``lsoda`` (a benchmark-only
 dependency, ``benchmarks/requirements.txt``) on the same compiled right-hand side -- runs at the
 loosest tolerance of a ladder (rtol 1e-5 ... 1e-10, atol = 1e-3 rtol) whose balance time lies
@@ -12,9 +12,10 @@ cached-compilation time of a fresh process.
 
     python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence]
 
-``--convergence`` prints the convergence study behind the engine's default tolerances
-(``rotorvib.models.balancer.simulate.RTOL, ATOL``): balance time, envelope time and peak force of the
-same run for rtol = 1e-6 ... 1e-12 (atol = 1e-3 rtol).
+``--convergence`` prints the convergence study behind paper B's integrator
+(``paper_b.balance.integrator`` in the config): the errors of the balance, envelope and force
+decay times and of the peak force of the same run, both methods, rtol = 1e-6 ... 1e-10
+(atol = 1e-3 rtol), against DOP853 at rtol 1e-13.
 """
 
 from __future__ import annotations
@@ -59,8 +60,9 @@ TIMES = np.arange(int(round(T_END / DT)) + 1) * DT
 LADDER = (1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10)
 
 
-def engine_run(p, y0, rtol):
-    return run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3).balance_time
+def engine_run(p, y0, rtol, method="dopri5"):
+    return run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3,
+               method=method).balance_time
 
 
 def scipy_run(p, y0, rtol, method, compiled):
@@ -123,13 +125,21 @@ def best_of(n, fn):
 
 
 def convergence(p, y0):
-    """Balance time, envelope time and peak force against the tolerance."""
-    print(f"{'rtol':>6} {'steps':>8} {'balance time (s)':>17} {'envelope (s)':>13} "
-          f"{'peak force (N)':>15}")
-    for rtol in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12):
-        res = run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3)
-        print(f"{rtol:6.0e} {res.n_steps:8d} {res.balance_time:17.8f} {res.envelope_time:13.8f} "
-              f"{res.force_max:15.8f}")
+    """Balance time, envelope time, force decay time and peak force of both methods against
+    the tolerance, beside a reference (DOP853 at rtol 1e-13)."""
+    ref = run(engine.FIXED, p, y0, CRITERION, rtol=1e-13, atol=1e-16, method="dop853")
+    print(f"reference: balance {ref.balance_time:.9f} s, envelope {ref.envelope_time:.9f} s, "
+          f"force decay {ref.force_decay_time:.9f} s, peak force {ref.force_max:.9f} N")
+    print(f"{'method':>7} {'rtol':>6} {'steps':>7} {'d balance (s)':>14} {'d envelope (s)':>15} "
+          f"{'d decay (s)':>12} {'d peak (rel)':>13}")
+    for method in ("dopri5", "dop853"):
+        for rtol in (1e-6, 3e-7, 1e-7, 1e-8, 1e-9, 1e-10):
+            res = run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3, method=method)
+            print(f"{method:>7} {rtol:6.0e} {res.n_steps:7d} "
+                  f"{res.balance_time - ref.balance_time:14.1e} "
+                  f"{res.envelope_time - ref.envelope_time:15.1e} "
+                  f"{res.force_decay_time - ref.force_decay_time:12.1e} "
+                  f"{res.force_max / ref.force_max - 1:13.1e}")
 
 
 def main():
@@ -146,7 +156,9 @@ def main():
         return
     run(engine.FIXED, p, y0, BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT))  # compile
     reference = engine_run(p, y0, 1e-12)
+    engine_run(p, y0, 1e-6, "dop853")  # compile
     integrators = {"engine (DOPRI5, numba)": engine_run,
+                   "engine (DOP853, numba)": lambda p_, y_, r: engine_run(p_, y_, r, "dop853"),
                    **numbalsoda_solvers(y0.size, p.size)}
     for compiled in (True, False):
         for method in ("DOP853", "RK45"):

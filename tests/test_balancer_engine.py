@@ -158,7 +158,7 @@ def test_failures_are_reported():
     # ... and the engine itself flags a failed run in its batch instead of returning numbers
     metrics = engine.integrate_batch(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]),
                                      0.5, 1e-8, 1e-11, 1e-3, R_THR, F_THR, MAX_STEPS,
-                                     np.arange(2))
+                                     np.arange(2), engine.DOPRI5, *engine.tableau(engine.DOPRI5))
     assert metrics[0, 0] == engine.OK and metrics[1, 0] != engine.OK
     with pytest.raises(IntegrationError, match="1 of 2"):
         check_batch(metrics)
@@ -174,3 +174,58 @@ def test_batch_equals_single_runs():
         single = run(engine.FIXED, P[i], Y[i], BalanceCriterion(R_THR, F_THR, 8.0, 1e-3))
         assert batch[i, 2] == single.balance_time or (np.isnan(batch[i, 2]) and single.censored)
         assert batch[i, 6] == single.force_max
+
+
+DOP853_CASE = dict(b=paper_b(), prof=SpeedProfile(200.0, "runup", 0.5, "printed"), deg=(40, 45))
+
+
+def test_dop853_takes_scipys_steps():
+    """The same method and step control as scipy's DOP853: at equal tolerances the engine
+    accepts the same number of steps (scipy's nfev = 1 + 12 per attempted step, its dense
+    output aside) and lands on the same states to round-off."""
+    p, y0 = fixed_parameters(DOP853_CASE["b"], DOP853_CASE["prof"]), ic(DOP853_CASE["deg"])
+    t_end, rtol, atol = 1.0, 1e-7, 1e-10
+    traj = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, t_end, 1e-3), rtol=rtol,
+               atol=atol, method="dop853", store=True)
+
+    def f(tt, y):
+        dy = np.empty_like(y)
+        engine.rhs(engine.FIXED, tt, y, p, dy)
+        return dy
+
+    sol = solve_ivp(f, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=atol, dense_output=True)
+    assert traj.result.n_steps == sol.t.size - 1
+    ref = sol.sol(traj.t).T   # scipy's dense output of the same steps
+    scale = np.max(np.abs(ref), axis=0)
+    assert np.max(np.abs(traj.y - ref) / scale) < 1e-9
+
+
+def test_dop853_converges_at_order_eight_on_the_runup():
+    """The error of the state at t = 0.3 s against a tight reference falls as h^8 with the
+    step: halving the tolerance ladder's step size (rtol / 2^8) halves the step."""
+    p, y0 = fixed_parameters(DOP853_CASE["b"], DOP853_CASE["prof"]), ic(DOP853_CASE["deg"])
+    crit = BalanceCriterion(R_THR, F_THR, 0.3, 0.3)
+    ref = run(engine.FIXED, p, y0, crit, rtol=1e-13, atol=1e-16, method="dop853", store=True).y[-1]
+    errors, steps = [], []
+    for rtol in (1e-6, 1e-6 / 2**8, 1e-6 / 2**16):
+        traj = run(engine.FIXED, p, y0, crit, rtol=rtol, atol=rtol * 1e-3, method="dop853",
+                   store=True)
+        errors.append(np.max(np.abs(traj.y[-1] - ref) / np.abs(ref).max()))
+        steps.append(traj.result.n_steps)
+    orders = np.log(np.array(errors[:-1]) / errors[1:]) / np.log(np.array(steps[1:]) / steps[:-1])
+    assert np.all((orders > 6.5) & (orders < 9.5)), (orders, errors, steps)
+
+
+def test_dop853_gives_the_balance_time_of_dopri5_with_fewer_steps():
+    p, y0 = fixed_parameters(DOP853_CASE["b"], DOP853_CASE["prof"]), ic(DOP853_CASE["deg"])
+    crit = BalanceCriterion(R_THR, F_THR, 20.0, 1e-3)
+    five = run(engine.FIXED, p, y0, crit, rtol=1e-10, atol=1e-13)
+    eight = run(engine.FIXED, p, y0, crit, rtol=1e-10, atol=1e-13, method="dop853")
+    assert eight.balance_time == pytest.approx(five.balance_time, abs=1e-7)
+    assert eight.force_max == pytest.approx(five.force_max, rel=1e-7)
+    assert eight.n_steps < five.n_steps / 3
+    batch = run_batch(engine.FIXED, np.stack([p, p]), np.stack([y0, ic((110, 115))]), crit,
+                      rtol=1e-10, atol=1e-13, method="dop853", progress=False)
+    assert batch[0, 2] == eight.balance_time
+    with pytest.raises(ValueError, match="method = 'rk4'"):
+        run(engine.FIXED, p, y0, crit, method="rk4")

@@ -32,6 +32,10 @@ def test_criterion_force_threshold_is_the_support_force_at_the_radius_threshold(
     assert c.n_samples == round(b["balance"]["t_end"] / b["balance"]["sample_dt"]) + 1
 
 
+def test_the_setup_runs_the_configured_integrator(config, setup):
+    assert setup.tolerances == config["paper_b"]["balance"]["integrator"]
+
+
 def test_run_parameters_match_the_schema(schema):
     assert set(schema["$defs"]["run_parameter"]["enum"]) == set(RUN_PARAMETERS)
 
@@ -60,7 +64,8 @@ def test_study_runs_are_the_public_simulate_runs(setup):
     for j, e in enumerate(eps):
         b = setup.balancer(mass=0.01, eps_bar=e, beta=1.0)
         res = simulate(b, setup.profile("printed"), np.radians(IC1), c.t_end, r0=setup.r0,
-                       theta0=setup.theta0, sample_dt=c.sample_dt, r_threshold=c.r_threshold)
+                       theta0=setup.theta0, sample_dt=c.sample_dt, r_threshold=c.r_threshold,
+                       **setup.tolerances)
         assert float(ds.balance_time[0, 0, j]) == res.balance_time
         assert float(ds.force_max[0, 0, j]) == res.force_max
     assert float(ds.balance_time[0, 0, 1]) != float(ds.balance_time[0, 0, 0])  # eps_bar varied

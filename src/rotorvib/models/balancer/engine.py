@@ -1,5 +1,6 @@
-"""Compiled core of the automatic ball balancer: right-hand sides, speed profiles and an adaptive
-Dormand-Prince 5(4) integrator that measures balance time and bearing force inside its loop.
+"""Compiled core of the automatic ball balancer: right-hand sides, speed profiles and adaptive
+Dormand-Prince integrators, 5(4) (DOPRI5) and 8(5,3) (DOP853), that measure balance time and
+bearing force inside their loop.
 
 Everything here is numba-compiled with ``cache=True``; model parameters travel as arrays (never as
 globals, which a cache would freeze).  Two forms of the same physics:
@@ -25,6 +26,8 @@ operating speed and ramp time T: ``w = Omega (t/T - sin(2 pi t/T) / (2 pi))`` fo
 """
 
 from __future__ import annotations
+
+from functools import lru_cache
 
 import numpy as np
 from numba import njit, prange
@@ -208,8 +211,8 @@ def _norm(err, y0, y1, rtol, atol):
 
 
 @njit(cache=True)
-def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span):
-    """Hairer's starting step (Solving ODEs I, II.4)."""
+def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span, order=4):
+    """Hairer's starting step (Solving ODEs I, II.4) for an error estimator of ``order``."""
     d0 = 0.0
     d1 = 0.0
     for j in range(y0.size):
@@ -231,7 +234,7 @@ def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span):
     if max(d1, d2) <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** 0.2
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
     return min(100.0 * h0, h1, t_span)
 
 
@@ -410,16 +413,170 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     return _metrics(acc, status, steps, r_threshold)
 
 
+# DOP853 (Hairer, Norsett & Wanner, Solving ODEs I, II.10): 12 stages of order 8, error
+# estimators of orders 5 and 3, FSAL, and a dense output of order 7 from three more stages.
+# Its tableau is scipy's (scipy.integrate._ivp.dop853_coefficients), loaded only when asked
+# for and passed to the compiled integrator as arrays.
+DOPRI5, DOP853 = 0, 1
+METHODS = {"dopri5": DOPRI5, "dop853": DOP853}
+_N853, _N853_DENSE = 12, 16
+
+
+@lru_cache(maxsize=None)
+def tableau(method: int) -> tuple:
+    """``(A, B, C, E3, E5, D)`` of DOP853 as contiguous float arrays; empty ones for DOPRI5,
+    whose coefficients are compiled in."""
+    if method != DOP853:
+        return (np.zeros((0, 0)), *(np.zeros(0) for _ in range(4)), np.zeros((0, 0)))
+    from scipy.integrate._ivp import dop853_coefficients as c
+
+    return tuple(np.ascontiguousarray(x, dtype=float) for x in (c.A, c.B, c.C, c.E3, c.E5, c.D))
+
+
+@njit(cache=True)
+def _dop853_stages(form, p, t, y, h, K, A, C, first, last, ytmp):
+    """Stages ``first .. last - 1`` of DOP853 into the rows of ``K`` (row 0: f(t, y))."""
+    ny = y.size
+    for s in range(first, last):
+        for j in range(ny):
+            acc = 0.0
+            for q in range(s):
+                acc += A[s, q] * K[q, j]
+            ytmp[j] = y[j] + h * acc
+        rhs(form, t + C[s] * h, ytmp, p, K[s])
+
+
+@njit(cache=True)
+def _dop853_error(K, y, ynew, h, rtol, atol, E3, E5):
+    """Hairer's error norm of DOP853: the order-5 estimate damped by the order-3 one."""
+    ny = y.size
+    e5 = 0.0
+    e3 = 0.0
+    for j in range(ny):
+        scale = atol + rtol * max(abs(y[j]), abs(ynew[j]))
+        a5 = 0.0
+        a3 = 0.0
+        for q in range(_N853 + 1):
+            a5 += E5[q] * K[q, j]
+            a3 += E3[q] * K[q, j]
+        e5 += (a5 / scale) ** 2
+        e3 += (a3 / scale) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    return abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * ny)
+
+
+@njit(cache=True)
+def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp):
+    """The seven coefficient rows ``F`` of DOP853's dense output over the step (after the three
+    extra stages)."""
+    _dop853_stages(form, p, t, y, h, K, A, C, _N853 + 1, _N853_DENSE, ytmp)
+    for j in range(y.size):
+        dy = ynew[j] - y[j]
+        F[0, j] = dy
+        F[1, j] = h * K[0, j] - dy
+        F[2, j] = 2.0 * dy - h * (K[_N853, j] + K[0, j])
+        for r in range(4):
+            acc = 0.0
+            for q in range(_N853_DENSE):
+                acc += D[r, q] * K[q, j]
+            F[3 + r, j] = h * acc
+
+
+@njit(cache=True)
+def _dop853_eval(theta, y, F, out):
+    """DOP853's dense output at ``t + theta h``."""
+    for j in range(y.size):
+        acc = 0.0
+        for i in range(F.shape[0] - 1, -1, -1):
+            acc += F[i, j]
+            acc *= theta if (F.shape[0] - 1 - i) % 2 == 0 else 1.0 - theta
+        out[j] = y[j] + acc
+
+
+@njit(cache=True)
+def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
+                     max_steps, out, A, B, C, E3, E5, D):
+    """:func:`integrate` with DOP853 (tableau from :func:`tableau`): the same samples,
+    analysers, metrics and statuses; step control as in Hairer's code (safety 0.9, factors
+    0.2 to 10, no growth right after a rejection)."""
+    ny = y0.size
+    y = y0.copy()
+    K = np.empty((_N853_DENSE, ny))
+    F = np.empty((7, ny))
+    ytmp, ynew, ys = np.empty(ny), np.empty(ny), np.empty(ny)
+    rhs(form, t0, y, p, K[0])
+    acc = _new_analysers()
+    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(K[0]))):
+        return _metrics(acc, NON_FINITE, 0, r_threshold)
+    _sample(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
+    j_sample = 1
+    t_sample = t0 + sample_dt
+    t = t0
+    h = _initial_step(form, t0, y, K[0], p, rtol, atol, t_end - t0, 7)
+    status = OK
+    steps = 0
+    rejected = False
+    while t < t_end:
+        if steps >= max_steps:
+            status = MAX_STEPS
+            break
+        if not h >= 1e-14 * max(1.0, abs(t)):      # also catches a NaN step
+            status = STEP_UNDERFLOW if np.isfinite(h) else NON_FINITE
+            break
+        h = min(h, t_end - t)
+        _dop853_stages(form, p, t, y, h, K, A, C, 1, _N853, ytmp)
+        for j in range(ny):
+            acc_b = 0.0
+            for q in range(_N853):
+                acc_b += B[q] * K[q, j]
+            ynew[j] = y[j] + h * acc_b
+        rhs(form, t + h, ynew, p, K[_N853])
+        e = _dop853_error(K, y, ynew, h, rtol, atol, E3, E5)
+        if not np.isfinite(e) or e >= 1.0:
+            h *= 0.2 if not np.isfinite(e) else max(0.2, 0.9 * e ** -0.125)
+            rejected = True
+            continue
+        steps += 1
+        finite = True
+        for j in range(ny):
+            finite = finite and np.isfinite(ynew[j])
+        if not finite:
+            status = NON_FINITE
+            break
+        t_new = t + h
+        if t_sample <= t_new + 1e-12 * sample_dt:
+            _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp)
+            while t_sample <= t_new + 1e-12 * sample_dt:
+                _dop853_eval(min((t_sample - t) / h, 1.0), y, F, ys)
+                _sample(form, p, acc, out, j_sample, t_sample, ys, r_threshold, f_threshold)
+                j_sample += 1
+                t_sample = t0 + j_sample * sample_dt
+        t = t_new
+        y[:] = ynew
+        K[0, :] = K[_N853]
+        factor = 10.0 if e == 0.0 else min(10.0, 0.9 * e ** -0.125)
+        h *= min(1.0, factor) if rejected else factor
+        rejected = False
+    return _metrics(acc, status, steps, r_threshold)
+
+
 @njit(cache=True, parallel=True)
 def integrate_batch(form, params, y0s, t_end, rtol, atol, sample_dt, r_threshold,
-                    f_threshold, max_steps, order):
-    """Run ``integrate`` for every row of ``params``/``y0s`` in parallel (``prange`` over the
-    shuffled ``order``, since run lengths vary a lot); return the metrics, one row per run."""
+                    f_threshold, max_steps, order, method, A, B, C, E3, E5, D):
+    """Run ``integrate`` (``method`` DOPRI5) or ``integrate_dop853`` (DOP853, tableau ``A`` ..
+    ``D``) for every row of ``params``/``y0s`` in parallel (``prange`` over the shuffled
+    ``order``, since run lengths vary a lot); return the metrics, one row per run."""
     n_runs = params.shape[0]
     result = np.empty((n_runs, N_METRICS))
     for q in prange(n_runs):
         i = order[q]
         empty = np.empty((0, y0s.shape[1]))
-        result[i, :] = integrate(form, params[i], y0s[i], 0.0, t_end, rtol, atol, sample_dt,
-                                 r_threshold, f_threshold, max_steps, empty)
+        if method == DOP853:
+            result[i, :] = integrate_dop853(form, params[i], y0s[i], 0.0, t_end, rtol, atol,
+                                            sample_dt, r_threshold, f_threshold, max_steps,
+                                            empty, A, B, C, E3, E5, D)
+        else:
+            result[i, :] = integrate(form, params[i], y0s[i], 0.0, t_end, rtol, atol,
+                                     sample_dt, r_threshold, f_threshold, max_steps, empty)
     return result

@@ -21,6 +21,8 @@ from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_p
 #: ``python -m benchmarks.balancer --convergence`` (paper B run-up: balance time within 1e-6 s
 #: and peak force within 2e-7 of rtol = 1e-12).
 RTOL, ATOL = 1e-8, 1e-11
+#: Default method: the integrator the tolerances above were chosen for.
+METHOD = "dopri5"
 MAX_STEPS = 50_000_000
 
 
@@ -140,15 +142,24 @@ def _raise_on_failure(m):
                                f"after {int(metric(m, 'n_steps'))} steps")
 
 
+def _method(name: str) -> int:
+    if name not in engine.METHODS:
+        raise ValueError(f"method = {name!r}: must be one of {sorted(engine.METHODS)}")
+    return engine.METHODS[name]
+
+
 def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *,
-        rtol: float = RTOL, atol: float = ATOL, store: bool = False):
-    """Integrate one run from t = 0 to ``criterion.t_end``; return a :class:`Trajectory`
-    (``store=True``) or a :class:`RunResult`."""
+        rtol: float = RTOL, atol: float = ATOL, method: str = METHOD, store: bool = False):
+    """Integrate one run from t = 0 to ``criterion.t_end`` with ``method`` ("dopri5" or
+    "dop853"); return a :class:`Trajectory` (``store=True``) or a :class:`RunResult`."""
     _check_inputs(p, y0, rtol, atol)
+    code = _method(method)
     c = criterion
     out = np.empty((c.n_samples if store else 0, len(y0)))
-    m = engine.integrate(form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end),
-                         rtol, atol, c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out)
+    args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
+            c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out)
+    m = (engine.integrate_dop853(*args, *engine.tableau(code)) if code == engine.DOP853
+         else engine.integrate(*args))
     _raise_on_failure(m)
     result = RunResult.from_metrics(m, c.t_end)
     if not store:
@@ -181,8 +192,8 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
 
 
 def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: BalanceCriterion, *,
-              rtol: float = RTOL, atol: float = ATOL, seed: int = 0, chunk: int = 256,
-              progress: bool = True) -> np.ndarray:
+              rtol: float = RTOL, atol: float = ATOL, method: str = METHOD, seed: int = 0,
+              chunk: int = 256, progress: bool = True) -> np.ndarray:
     """Metrics (rows of ``engine.METRICS``, read with :func:`metric`) of many runs, in parallel
     on all cores.
 
@@ -194,6 +205,7 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     params = np.ascontiguousarray(params, dtype=float)
     y0s = np.ascontiguousarray(y0s, dtype=float)
     _check_inputs(params, y0s, rtol, atol)
+    code = _method(method)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
     result = np.empty((n, engine.N_METRICS))
@@ -201,7 +213,8 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
         idx = order[start:start + chunk]
         result[idx] = engine.integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol,
                                              atol, c.sample_dt, c.r_threshold, c.f_threshold,
-                                             MAX_STEPS, np.arange(len(idx)))
+                                             MAX_STEPS, np.arange(len(idx)), code,
+                                             *engine.tableau(code))
         if progress and n > chunk:
             done = min(start + chunk, n)
             print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",

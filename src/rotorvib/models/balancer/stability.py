@@ -21,7 +21,6 @@ from functools import lru_cache
 
 import numpy as np
 import sympy as sp
-from scipy.optimize import brentq
 
 MU, RHO, ZETA, BETA, OMEGA = sp.symbols("mu rho zeta beta Omega", positive=True)
 TAU = sp.Symbol("tau", real=True)
@@ -162,6 +161,8 @@ def stability_onsets(growth_of, omega_bar, growth, *, xtol: float = 1e-8) -> np.
     stable with rising speed, located exactly: the root of ``growth_of(row, omega)`` between the
     two grid speeds that bracket the first sign change (Brent's method, to ``xtol``).  NaN for a
     row that never turns stable on the grid or is stable from its first speed on."""
+    from scipy.optimize import brentq  # here: the numeric jobs need no scipy.optimize
+
     onsets = np.full(growth.shape[0], np.nan)
     for i, row in enumerate(growth):
         turns = np.flatnonzero((row[:-1] >= 0) & (row[1:] < 0))

@@ -51,7 +51,7 @@ def time_response_dataset(setup: Setup, *, kinematics, runs: dict) -> xr.Dataset
             b = setup.balancer(mass=spec["m"], eps_bar=spec["eps_bar"], beta=spec["beta"])
             p, y0 = setup.run_inputs(mass=spec["m"], eps_bar=spec["eps_bar"], beta=spec["beta"],
                                      phi0_deg=spec["phi0"], kinematics=kin, speed=spec["speed"])
-            traj = run(engine.FIXED, p, y0, setup.criterion, store=True)
+            traj = run(engine.FIXED, p, y0, setup.criterion, store=True, **setup.tolerances)
             r[i, j], force[i, j] = traj.r, traj.bearing_force(b.k, b.c)
             phi1[i, j], phi2[i, j] = np.degrees(traj.y[:, 2]), np.degrees(traj.y[:, 3])
             bal[i, j], env[i, j] = traj.result.balance_time, traj.result.envelope_time

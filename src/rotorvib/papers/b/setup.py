@@ -18,7 +18,8 @@ from rotorvib.io.coords import axis_coord
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
-from rotorvib.models.balancer.simulate import BalanceCriterion, check_batch, run_batch
+from rotorvib.models.balancer.simulate import (ATOL, METHOD, RTOL, BalanceCriterion, check_batch,
+                                               run_batch)
 
 REFERENCE = ("Paper B: M. Rezaee, R. Fathi, The effect of damping ratio and balls mass on the "
              "stability of automatic ball balancer and determining their optimum values, "
@@ -121,12 +122,21 @@ class Setup:
     omega: float
     t_ramp: float
     criterion: BalanceCriterion
+    #: the engine's method and tolerances (``paper_b.balance.integrator``)
+    method: str = METHOD
+    rtol: float = RTOL
+    atol: float = ATOL
 
     @classmethod
     def from_config(cls, machine, initial_state, speed, balance) -> "Setup":
         """From the config sections of the same names (``paper_b.*``)."""
-        return cls(**machine, **initial_state, **speed,
+        return cls(**machine, **initial_state, **speed, **balance["integrator"],
                    criterion=BalanceCriterion.from_config(balance, machine["k"]))
+
+    @property
+    def tolerances(self) -> dict:
+        """The keywords of ``simulate.run`` and ``run_batch`` that choose the integrator."""
+        return {"method": self.method, "rtol": self.rtol, "atol": self.atol}
 
     def balancer(self, *, mass, eps_bar, beta, R=None, zeta=None) -> Balancer:
         return Balancer.from_paper_b(M=self.M, k=self.k, R=self.R if R is None else R,
@@ -149,6 +159,7 @@ class Setup:
         """Metrics of many ``(params, y0)`` runs, in parallel; failures raise."""
         params = np.stack([p for p, _ in inputs])
         y0s = np.stack([y for _, y in inputs])
-        metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress)
+        metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress,
+                            **self.tolerances)
         check_batch(metrics)
         return metrics
