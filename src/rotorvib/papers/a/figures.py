@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.ticker import NullLocator
 
 from rotorvib.io.plotting import figure
 
@@ -132,6 +133,8 @@ def error_study(err, paper):
         ax.loglog(d, ref * (d / d[-1]) ** order, "k", ls=ls, lw=0.8, label=f"delta^{order}")
     ax.set(xlabel="initial distance delta from the balanced state",
            ylabel="max error against Runge-Kutta", title="Error of the multiple-scales solutions")
+    ax.set_xticks(d, [f"{x:g}" for x in d])      # the computed distances, not crowded minor
+    ax.xaxis.set_minor_locator(NullLocator())   # log ticks
     ax.legend(fontsize=8)
     return fig
 
