@@ -1,19 +1,9 @@
 # `snakemake -j2 archive`: one tarball of every dataset, table and figure, the HTML report, the
 # run's record (commit and configuration), the licence and the citation file, with a SHA-256
 # manifest, restore notes and an RO-Crate describing the run (rotorvib.io.crate).
-from pathlib import Path
-
 from rotorvib.io.provenance import git_state
 
 RUN_RECORD = {"config": "results/run/config.yaml", "commit": "results/run/commit.txt"}
-
-
-def configuration_files():
-    """The configuration files the run read that lie in the working directory, as relative
-    paths (the whole merged configuration is RUN_RECORD["config"] in any case)."""
-    here = Path.cwd()
-    paths = {Path(f).resolve() for f in workflow.configfiles}
-    return sorted(str(p.relative_to(here)) for p in paths if p.is_relative_to(here))
 
 
 rule run_record:

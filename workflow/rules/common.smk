@@ -1,9 +1,10 @@
 # Helpers shared by all rules: configuration validation (before any job), paths, the figure
 # declaration, the code fingerprint every script rule receives and the configuration hash each
 # of its input datasets must carry.
-from snakemake.exceptions import WorkflowError
+from pathlib import Path
 from types import SimpleNamespace
 
+from snakemake.exceptions import WorkflowError
 from snakemake.utils import update_config
 
 from rotorvib.io.config import (
@@ -194,3 +195,12 @@ def add_input_checks(rules):
     for each in rules:
         if each.script:
             each.set_params(**{INPUTS_CONFIG_PARAM: inputs_config_hashes})
+
+
+def configuration_files():
+    """The configuration files the run read that lie in the working directory, as relative
+    paths (the whole merged configuration is a file of the archive in any case, archive.smk).
+    """
+    here = Path.cwd()
+    paths = {Path(f).resolve() for f in workflow.configfiles}
+    return sorted(str(p.relative_to(here)) for p in paths if p.is_relative_to(here))
