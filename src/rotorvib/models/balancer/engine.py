@@ -239,6 +239,26 @@ def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span, order=4):
 
 
 @njit(cache=True)
+def _cannot_step(steps, max_steps, h, t):
+    """Why no further step can be taken (``OK``: it can): too many steps, or a step too small
+    to advance ``t`` (or NaN)."""
+    if steps >= max_steps:
+        return MAX_STEPS
+    if not h >= 1e-14 * max(1.0, abs(t)):      # also catches a NaN step
+        return STEP_UNDERFLOW if np.isfinite(h) else NON_FINITE
+    return OK
+
+
+@njit(cache=True)
+def _all_finite(x):
+    """``np.all(np.isfinite(x))`` without a temporary array (once per step)."""
+    for j in range(x.size):
+        if not np.isfinite(x[j]):
+            return False
+    return True
+
+
+@njit(cache=True)
 def _hermite(theta, h, y0, f0, y1, f1, out):
     """Cubic Hermite interpolation at ``t0 + theta h`` from values and slopes at both ends."""
     h00 = (1.0 + 2.0 * theta) * (1.0 - theta) ** 2
@@ -363,11 +383,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     status = OK
     steps = 0
     while t < t_end:
-        if steps >= max_steps:
-            status = MAX_STEPS
-            break
-        if not h >= 1e-14 * max(1.0, abs(t)):      # also catches a NaN step
-            status = STEP_UNDERFLOW if np.isfinite(h) else NON_FINITE
+        status = _cannot_step(steps, max_steps, h, t)
+        if status != OK:
             break
         h = min(h, t_end - t)
         for j in range(ny):
@@ -397,7 +414,7 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
             h *= 0.2 if not np.isfinite(e) else max(0.2, 0.9 * e ** -0.2)
             continue
         steps += 1
-        if not np.all(np.isfinite(ynew)):
+        if not _all_finite(ynew):
             status = NON_FINITE
             break
         t_new = t + h
@@ -518,11 +535,8 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
     steps = 0
     rejected = False
     while t < t_end:
-        if steps >= max_steps:
-            status = MAX_STEPS
-            break
-        if not h >= 1e-14 * max(1.0, abs(t)):      # also catches a NaN step
-            status = STEP_UNDERFLOW if np.isfinite(h) else NON_FINITE
+        status = _cannot_step(steps, max_steps, h, t)
+        if status != OK:
             break
         h = min(h, t_end - t)
         _dop853_stages(form, p, t, y, h, K, A, C, 1, _N853, ytmp)
@@ -538,10 +552,7 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
             rejected = True
             continue
         steps += 1
-        finite = True
-        for j in range(ny):
-            finite = finite and np.isfinite(ynew[j])
-        if not finite:
+        if not _all_finite(ynew):
             status = NON_FINITE
             break
         t_new = t + h
