@@ -32,6 +32,10 @@ MINOR_TOL = 0.10
 NUMERIC_VERDICTS = ("MATCH", "MINOR", "MAJOR", "PAPER-INCONSISTENT")
 EXPECTATION_VERDICTS = ("EXPECTED", "UNEXPECTED")
 CLAIM_VERDICTS = ("SUPPORTED", "NOT SUPPORTED", "DEPENDS", "UNDETERMINED")
+#: The three kinds of row and their verdicts, as the totals count them.
+VERDICT_GROUPS = (("printed numbers", NUMERIC_VERDICTS),
+                  ("chosen or theoretical values", EXPECTATION_VERDICTS),
+                  ("claims", CLAIM_VERDICTS))
 _HOLDS_TEXT = {True: "yes", False: "no", None: "undetermined"}
 
 
@@ -244,11 +248,9 @@ def totals(table: list[dict]) -> list[str]:
     counts = {}
     for row in table:
         counts[row["verdict"]] = counts.get(row["verdict"], 0) + 1
-    groups = (("printed numbers", NUMERIC_VERDICTS), ("chosen or theoretical values",
-                                                      EXPECTATION_VERDICTS),
-              ("claims", CLAIM_VERDICTS))
     return [f"{name} ({sum(counts.get(v, 0) for v in verdicts)}): "
-            + ", ".join(f"{v} {counts.get(v, 0)}" for v in verdicts) for name, verdicts in groups]
+            + ", ".join(f"{v} {counts.get(v, 0)}" for v in verdicts)
+            for name, verdicts in VERDICT_GROUPS]
 
 
 def verdict_definitions() -> str:

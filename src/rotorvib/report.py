@@ -14,12 +14,8 @@ import re
 from collections import Counter
 from pathlib import Path
 
-from rotorvib.comparison import (CLAIM_VERDICTS, EXPECTATION_VERDICTS, NUMERIC_VERDICTS,
-                                 totals, verdict_definitions)
+from rotorvib.comparison import VERDICT_GROUPS, totals, verdict_definitions
 
-VERDICT_GROUPS = (("printed numbers", NUMERIC_VERDICTS),
-                  ("chosen or theoretical values", EXPECTATION_VERDICTS),
-                  ("claims", CLAIM_VERDICTS))
 # Verdicts that are findings: the paper and the reproduction disagree.
 FINDINGS = ("MAJOR", "PAPER-INCONSISTENT", "UNEXPECTED", "NOT SUPPORTED")
 _RST_SPECIAL = re.compile(r"([\\`*_|\[\]<>])")
@@ -200,7 +196,7 @@ def landing_page(table: list[dict], claims: dict[tuple[str, str], str], papers: 
              "the parameters of ``config/config.yaml`` and set beside the paper's own numbers. "
              f"{len(table)} stated values and claims are compared in `Comparison`_; each "
              "figure's caption repeats the rows that refer to it.", "",
-             "Verdicts", "--------", "",
+             "Verdict totals", "--------------", "",
              rst_text(verdict_definitions()), ""]
     lines += totals_table(table)
     lines += [f"Discrepancy analysis: {rst_text(discrepancy_totals)}.", "",
