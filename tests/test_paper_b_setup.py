@@ -137,7 +137,7 @@ def test_basin_map_is_run_on_half_the_grid_and_mirrors_the_full_one(setup, monke
 
     monkeypatch.setattr(Setup, "runs", lambda self, inputs, **kw: counting(inputs, **kw))
     half = basin_dataset(setup, kinematics=["printed"], cases=[(0.2, 0.006)], n=n,
-                         eps_bar=0.012)
+                         eps_bar=0.012, ics={"IC1": (60.0, 120.0)})
     angles = half.phi1.values
 
     def make_inputs(kinematics, case, phi1, phi2):
@@ -146,8 +146,18 @@ def test_basin_map_is_run_on_half_the_grid_and_mirrors_the_full_one(setup, monke
 
     full = grid_dataset(setup, {"kinematics": ["printed"], "case": [0], "phi1": angles,
                                 "phi2": angles}, half.coords, make_inputs, half.attrs)
-    assert counted == [n * (n + 1) // 2, n * n]
+    assert counted == [n * (n + 1) // 2, 1, n * n]   # the map, the paper's IC, the full map
+    # the IC lies on the grid here: its run is the map's at (60, 120)
+    assert float(half.ic_balance_time[0, 0, 0]) == float(half.balance_time[0, 0, 1, 2])
     assert np.all(half.balanced.values == 1)
     np.testing.assert_allclose(half.balance_time.values, full.balance_time.values, atol=1e-7)
     np.testing.assert_array_equal(half.balance_time.values[0, 0],
                                   half.balance_time.values[0, 0].T)
+
+
+def test_the_share_balanced_by_a_time_counts_censored_runs_as_never():
+    from rotorvib.papers.b.claims import share_balanced_by
+
+    times = np.array([[1.0, 2.0], [np.nan, 3.0]])
+    assert [share_balanced_by(times, t) for t in (0.5, 1.0, 2.5, 3.0, 1e9)] == \
+        [0.0, 0.25, 0.5, 0.75, 0.75]

@@ -119,6 +119,13 @@ FIGURES["b"] = {
         "the paper's three initial conditions marked.",
         ics=B["initial_conditions"],
     ),
+    "basin_distribution": figure(
+        "basin_distribution",
+        {"basin": "basin"},
+        "Beyond the paper: the balance time as a distribution over initial ball positions "
+        "placed at random (the basin map's uniform grid), with the share of positions "
+        "balanced by each time, and where the paper's three initial conditions fall in it.",
+    ),
     "kinematics": figure(
         "kinematics_shift",
         {"beta": "balance_beta", "mass": "balance_mass"},
@@ -304,6 +311,7 @@ rule b_basin:
         setup=B_SETUP,
         kinematics=B["kinematics"],
         basin=B["basin"],
+        ics=B["initial_conditions"],
     message:
         "Paper B: balance time over all initial ball positions"
     script:

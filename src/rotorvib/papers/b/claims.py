@@ -40,6 +40,16 @@ def mean_over_ics(ds: xr.DataArray) -> xr.DataArray:
     return ds.mean("ic", skipna=False)
 
 
+def share_balanced_by(times, t) -> float:
+    """The share of runs balanced by time ``t``: the empirical distribution function of the
+    balance ``times`` at ``t``, a censored run (NaN: not balanced by the end) counting as
+    longer than any time. Over a uniform grid of initial ball positions it is the chance that
+    balls placed at random balance by ``t``; at an initial condition's own time, its
+    percentile."""
+    times = np.asarray(times, float).ravel()
+    return float(np.count_nonzero(times <= t) / times.size)
+
+
 def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
     """Optimum mass (minimum mean balance time over the ICs) and that mean, per speed."""
     t = pick(t1, kinematics=kinematics)

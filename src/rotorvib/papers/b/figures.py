@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorvib.io.coords import pick
+from rotorvib.io.coords import labels, pick
+from rotorvib.papers.b.claims import share_balanced_by
 from rotorvib.io.plotting import PAPER_STYLE, figure, paper_hline, paper_vline
 
 STYLES = {0: "-", 1: "--"}
@@ -239,6 +240,35 @@ def basin(basin, paper, ics):
         ax.set(xlabel="phi1(0) (deg)", ylabel="phi2(0) (deg)",
                title=f"beta = {float(b.case_beta[j]):g}, m = {1e3 * float(b.case_mass[j]):g} g")
         fig.colorbar(mesh, ax=ax, label="balance time (s); grey: not balanced")
+    return fig
+
+
+def basin_distribution(basin, paper):
+    """Beyond the paper: the distribution of the balance time over initial ball positions
+    placed at random (the basin map's uniform grid), per (beta, m) case and kinematics, with
+    the paper's initial conditions at their percentiles."""
+    fig, ax = figure()
+    for j in range(basin.case.size):
+        color = f"C{j}"
+        case = f"beta = {float(basin.case_beta[j]):g}, m = {1e3 * float(basin.case_mass[j]):g} g"
+        for kinematics, ls in zip(_kinematics(basin), ("-", "--")):
+            b = pick(basin, kinematics=kinematics).isel(case=j)
+            times = np.sort(b.balance_time.values.ravel())
+            finite = times[np.isfinite(times)]
+            share = np.arange(1, finite.size + 1) / times.size
+            ax.step(finite, share, where="post", color=color, ls=ls,
+                    label=f"{case}, {kinematics} (balanced by t_end: {share[-1]:.0%})")
+            for k, (ic, t) in enumerate(zip(labels(b, "ic"), b.ic_balance_time.values)):
+                at = share_balanced_by(times, t)
+                ax.plot(t, at, "o", color=color, mfc="white" if ls == "--" else color, ms=5)
+                if ls == "-":                        # staggered: close ICs stay readable
+                    ax.annotate(f"{ic}: {at:.0%}", (t, at), xytext=(6, -12 - 10 * k),
+                                textcoords="offset points", fontsize=7, color=color,
+                                arrowprops={"arrowstyle": "-", "color": color, "lw": 0.5})
+    ax.set(xlabel="balance time (s)", ylabel="share of initial positions balanced by then",
+           ylim=(0, 1.02), title="Balance time over random initial ball positions "
+           f"(eps/R = {basin.attrs['eps_bar']:g}); dots: the paper's ICs")
+    ax.legend(fontsize=7, loc="upper left")
     return fig
 
 

@@ -141,9 +141,10 @@ def force_dataset(setup: Setup, *, kinematics, cases, R_values, speed, eps_bar, 
                                       "inferred)", "Table 2, eq. 40"))
 
 
-def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar):
-    """Balance time over all initial ball positions (phi1(0), phi2(0)) in [0, 360)^2; the balls
-    are identical, so the map is symmetric under swapping them and half of it is run."""
+def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar, ics):
+    """Balance time over all initial ball positions (phi1(0), phi2(0)) in [0, 360)^2, and at the
+    paper's initial conditions ``ics`` (name -> angles, deg) for comparison; the balls are
+    identical, so the map is symmetric under swapping them and half of it is run."""
     angles = np.arange(n) * 360.0 / n
 
     def make_inputs(kinematics, case, phi1, phi2):
@@ -161,5 +162,15 @@ def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar):
                           "Beyond the paper: are the three initial conditions of eq. (39) "
                           f"representative? (eps_bar = {eps_bar}; phi2 < phi1 mirrors "
                           "phi1 < phi2: identical balls)", "eq. (39)")
-    return grid_dataset(setup, axes, coords, make_inputs, {**attrs, "eps_bar": eps_bar},
+    grid = grid_dataset(setup, axes, coords, make_inputs, {**attrs, "eps_bar": eps_bar},
                         symmetric=("phi1", "phi2"))
+    names = list(ics)
+    at_ics = grid_dataset(
+        setup, {"kinematics": kinematics, "case": list(range(len(cases))), "ic": names},
+        {**label_coord("kinematics", kinematics, KINEMATICS_LONG_NAME),
+         **_case_coords(cases, "(beta, m) case"), **label_coord("ic", names, IC_LONG_NAME)},
+        lambda kinematics, case, ic: make_inputs(kinematics, case, *ics[ic]), {})
+    for var in ("balance_time", "balanced"):
+        grid[f"ic_{var}"] = at_ics[var].assign_attrs(
+            long_name=f"{at_ics[var].attrs['long_name']} at the paper's initial conditions")
+    return grid
