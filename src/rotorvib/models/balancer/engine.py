@@ -1,6 +1,6 @@
-"""Compiled core of the automatic ball balancer: right-hand sides, speed profiles and adaptive
-Dormand-Prince integrators, 5(4) (DOPRI5) and 8(5,3) (DOP853), that measure balance time and
-bearing force inside their loop.
+"""Compiled core of the automatic ball balancer: right-hand sides, speed profiles, the in-loop
+analysers of balance time and bearing force, and an adaptive Dormand-Prince 5(4) integrator
+(DOPRI5) that feeds them; ``dop853`` holds the 8th-order one, ``batch`` runs either in parallel.
 
 Everything here is numba-compiled with ``cache=True``; model parameters travel as arrays (never as
 globals, which a cache would freeze).  Two forms of the same physics:
@@ -26,8 +26,6 @@ operating speed and ramp time T: ``w = Omega (t/T - sin(2 pi t/T) / (2 pi))`` fo
 """
 
 from __future__ import annotations
-
-from functools import lru_cache
 
 import numpy as np
 from numba import njit, prange
@@ -211,7 +209,7 @@ def _norm(err, y0, y1, rtol, atol):
 
 
 @njit(cache=True)
-def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span, order=4):
+def initial_step(form, t0, y0, f0, p, rtol, atol, t_span, order=4):
     """Hairer's starting step (Solving ODEs I, II.4) for an error estimator of ``order``."""
     d0 = 0.0
     d1 = 0.0
@@ -239,7 +237,7 @@ def _initial_step(form, t0, y0, f0, p, rtol, atol, t_span, order=4):
 
 
 @njit(cache=True)
-def _cannot_step(steps, max_steps, h, t):
+def cannot_step(steps, max_steps, h, t):
     """Why no further step can be taken (``OK``: it can): too many steps, or a step too small
     to advance ``t`` (or NaN)."""
     if steps >= max_steps:
@@ -250,7 +248,7 @@ def _cannot_step(steps, max_steps, h, t):
 
 
 @njit(cache=True)
-def _all_finite(x):
+def all_finite(x):
     """``np.all(np.isfinite(x))`` without a temporary array (once per step)."""
     for j in range(x.size):
         if not np.isfinite(x[j]):
@@ -275,7 +273,7 @@ def _hermite(theta, h, y0, f0, y1, f1, out):
 
 
 @njit(cache=True)
-def _new_analysers():
+def new_analysers():
     acc = np.full(15, np.nan)
     acc[_R_PREV] = acc[_R_PREV2] = acc[_PEAK_R] = -1.0
     acc[_BAL] = acc[_ENV] = acc[_F_DONE] = 0.0
@@ -324,7 +322,7 @@ def _observe(acc, t, r, force, r_threshold, f_threshold):
 
 
 @njit(cache=True)
-def _metrics(acc, status, steps, r_threshold):
+def metrics_row(acc, status, steps, r_threshold):
     # the envelope falls below the threshold after its last peak without a further peak
     if (acc[_ENV] == 0.0 and acc[_PEAK_R] >= r_threshold > acc[_R_LAST]
             and acc[_T_PREV] > acc[_PEAK_T]):
@@ -345,7 +343,7 @@ def _metrics(acc, status, steps, r_threshold):
 
 
 @njit(cache=True)
-def _sample(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
+def sample_into(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
     r, force = radius_and_force(form, ys, p)
     if j < out.shape[0]:
         out[j, :] = ys
@@ -372,18 +370,18 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     k2, k3, k4, k5, k6, k7 = (np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny),
                               np.empty(ny), np.empty(ny))
     ytmp, ynew, err, ys = np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny)
-    acc = _new_analysers()
+    acc = new_analysers()
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f0))):
-        return _metrics(acc, NON_FINITE, 0, r_threshold)
-    _sample(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
+        return metrics_row(acc, NON_FINITE, 0, r_threshold)
+    sample_into(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
     j_sample = 1
     t_sample = t0 + sample_dt
     t = t0
-    h = _initial_step(form, t0, y, f0, p, rtol, atol, t_end - t0)
+    h = initial_step(form, t0, y, f0, p, rtol, atol, t_end - t0)
     status = OK
     steps = 0
     while t < t_end:
-        status = _cannot_step(steps, max_steps, h, t)
+        status = cannot_step(steps, max_steps, h, t)
         if status != OK:
             break
         h = min(h, t_end - t)
@@ -414,180 +412,17 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
             h *= 0.2 if not np.isfinite(e) else max(0.2, 0.9 * e ** -0.2)
             continue
         steps += 1
-        if not _all_finite(ynew):
+        if not all_finite(ynew):
             status = NON_FINITE
             break
         t_new = t + h
         while t_sample <= t_new + 1e-12 * sample_dt:
             _hermite(min((t_sample - t) / h, 1.0), h, y, f0, ynew, k7, ys)
-            _sample(form, p, acc, out, j_sample, t_sample, ys, r_threshold, f_threshold)
+            sample_into(form, p, acc, out, j_sample, t_sample, ys, r_threshold, f_threshold)
             j_sample += 1
             t_sample = t0 + j_sample * sample_dt
         t = t_new
         y[:] = ynew
         f0[:] = k7
         h *= min(5.0, max(0.2, 0.9 * e ** -0.2)) if e > 0.0 else 5.0
-    return _metrics(acc, status, steps, r_threshold)
-
-
-# DOP853 (Hairer, Norsett & Wanner, Solving ODEs I, II.10): 12 stages of order 8, error
-# estimators of orders 5 and 3, FSAL, and a dense output of order 7 from three more stages.
-# Its tableau is scipy's (scipy.integrate._ivp.dop853_coefficients), loaded only when asked
-# for and passed to the compiled integrator as arrays.
-DOPRI5, DOP853 = 0, 1
-METHODS = {"dopri5": DOPRI5, "dop853": DOP853}
-_N853, _N853_DENSE = 12, 16
-
-
-@lru_cache(maxsize=None)
-def tableau(method: int) -> tuple:
-    """``(A, B, C, E3, E5, D)`` of DOP853 as contiguous float arrays; empty ones for DOPRI5,
-    whose coefficients are compiled in."""
-    if method != DOP853:
-        return (np.zeros((0, 0)), *(np.zeros(0) for _ in range(4)), np.zeros((0, 0)))
-    from scipy.integrate._ivp import dop853_coefficients as c
-
-    return tuple(np.ascontiguousarray(x, dtype=float) for x in (c.A, c.B, c.C, c.E3, c.E5, c.D))
-
-
-@njit(cache=True)
-def _dop853_stages(form, p, t, y, h, K, A, C, first, last, ytmp):
-    """Stages ``first .. last - 1`` of DOP853 into the rows of ``K`` (row 0: f(t, y))."""
-    ny = y.size
-    for s in range(first, last):
-        for j in range(ny):
-            acc = 0.0
-            for q in range(s):
-                acc += A[s, q] * K[q, j]
-            ytmp[j] = y[j] + h * acc
-        rhs(form, t + C[s] * h, ytmp, p, K[s])
-
-
-@njit(cache=True)
-def _dop853_error(K, y, ynew, h, rtol, atol, E3, E5):
-    """Hairer's error norm of DOP853: the order-5 estimate damped by the order-3 one."""
-    ny = y.size
-    e5 = 0.0
-    e3 = 0.0
-    for j in range(ny):
-        scale = atol + rtol * max(abs(y[j]), abs(ynew[j]))
-        a5 = 0.0
-        a3 = 0.0
-        for q in range(_N853 + 1):
-            a5 += E5[q] * K[q, j]
-            a3 += E3[q] * K[q, j]
-        e5 += (a5 / scale) ** 2
-        e3 += (a3 / scale) ** 2
-    if e5 == 0.0 and e3 == 0.0:
-        return 0.0
-    return abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * ny)
-
-
-@njit(cache=True)
-def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp):
-    """The seven coefficient rows ``F`` of DOP853's dense output over the step (after the three
-    extra stages)."""
-    _dop853_stages(form, p, t, y, h, K, A, C, _N853 + 1, _N853_DENSE, ytmp)
-    for j in range(y.size):
-        dy = ynew[j] - y[j]
-        F[0, j] = dy
-        F[1, j] = h * K[0, j] - dy
-        F[2, j] = 2.0 * dy - h * (K[_N853, j] + K[0, j])
-        for r in range(4):
-            acc = 0.0
-            for q in range(_N853_DENSE):
-                acc += D[r, q] * K[q, j]
-            F[3 + r, j] = h * acc
-
-
-@njit(cache=True)
-def _dop853_eval(theta, y, F, out):
-    """DOP853's dense output at ``t + theta h``."""
-    for j in range(y.size):
-        acc = 0.0
-        for i in range(F.shape[0] - 1, -1, -1):
-            acc += F[i, j]
-            acc *= theta if (F.shape[0] - 1 - i) % 2 == 0 else 1.0 - theta
-        out[j] = y[j] + acc
-
-
-@njit(cache=True)
-def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
-                     max_steps, out, A, B, C, E3, E5, D):
-    """:func:`integrate` with DOP853 (tableau from :func:`tableau`): the same samples,
-    analysers, metrics and statuses; step control as in Hairer's code (safety 0.9, factors
-    0.2 to 10, no growth right after a rejection)."""
-    ny = y0.size
-    y = y0.copy()
-    K = np.empty((_N853_DENSE, ny))
-    F = np.empty((7, ny))
-    ytmp, ynew, ys = np.empty(ny), np.empty(ny), np.empty(ny)
-    rhs(form, t0, y, p, K[0])
-    acc = _new_analysers()
-    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(K[0]))):
-        return _metrics(acc, NON_FINITE, 0, r_threshold)
-    _sample(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
-    j_sample = 1
-    t_sample = t0 + sample_dt
-    t = t0
-    h = _initial_step(form, t0, y, K[0], p, rtol, atol, t_end - t0, 7)
-    status = OK
-    steps = 0
-    rejected = False
-    while t < t_end:
-        status = _cannot_step(steps, max_steps, h, t)
-        if status != OK:
-            break
-        h = min(h, t_end - t)
-        _dop853_stages(form, p, t, y, h, K, A, C, 1, _N853, ytmp)
-        for j in range(ny):
-            acc_b = 0.0
-            for q in range(_N853):
-                acc_b += B[q] * K[q, j]
-            ynew[j] = y[j] + h * acc_b
-        rhs(form, t + h, ynew, p, K[_N853])
-        e = _dop853_error(K, y, ynew, h, rtol, atol, E3, E5)
-        if not np.isfinite(e) or e >= 1.0:
-            h *= 0.2 if not np.isfinite(e) else max(0.2, 0.9 * e ** -0.125)
-            rejected = True
-            continue
-        steps += 1
-        if not _all_finite(ynew):
-            status = NON_FINITE
-            break
-        t_new = t + h
-        if t_sample <= t_new + 1e-12 * sample_dt:
-            _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp)
-            while t_sample <= t_new + 1e-12 * sample_dt:
-                _dop853_eval(min((t_sample - t) / h, 1.0), y, F, ys)
-                _sample(form, p, acc, out, j_sample, t_sample, ys, r_threshold, f_threshold)
-                j_sample += 1
-                t_sample = t0 + j_sample * sample_dt
-        t = t_new
-        y[:] = ynew
-        K[0, :] = K[_N853]
-        factor = 10.0 if e == 0.0 else min(10.0, 0.9 * e ** -0.125)
-        h *= min(1.0, factor) if rejected else factor
-        rejected = False
-    return _metrics(acc, status, steps, r_threshold)
-
-
-@njit(cache=True, parallel=True)
-def integrate_batch(form, params, y0s, t_end, rtol, atol, sample_dt, r_threshold,
-                    f_threshold, max_steps, order, method, A, B, C, E3, E5, D):
-    """Run ``integrate`` (``method`` DOPRI5) or ``integrate_dop853`` (DOP853, tableau ``A`` ..
-    ``D``) for every row of ``params``/``y0s`` in parallel (``prange`` over the shuffled
-    ``order``, since run lengths vary a lot); return the metrics, one row per run."""
-    n_runs = params.shape[0]
-    result = np.empty((n_runs, N_METRICS))
-    for q in prange(n_runs):
-        i = order[q]
-        empty = np.empty((0, y0s.shape[1]))
-        if method == DOP853:
-            result[i, :] = integrate_dop853(form, params[i], y0s[i], 0.0, t_end, rtol, atol,
-                                            sample_dt, r_threshold, f_threshold, max_steps,
-                                            empty, A, B, C, E3, E5, D)
-        else:
-            result[i, :] = integrate(form, params[i], y0s[i], 0.0, t_end, rtol, atol,
-                                     sample_dt, r_threshold, f_threshold, max_steps, empty)
-    return result
+    return metrics_row(acc, status, steps, r_threshold)

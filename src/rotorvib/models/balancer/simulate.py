@@ -13,7 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import dop853, engine
+from rotorvib.models.balancer.batch import integrate_batch
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
 
@@ -143,9 +144,9 @@ def _raise_on_failure(m):
 
 
 def _method(name: str) -> int:
-    if name not in engine.METHODS:
-        raise ValueError(f"method = {name!r}: must be one of {sorted(engine.METHODS)}")
-    return engine.METHODS[name]
+    if name not in dop853.METHODS:
+        raise ValueError(f"method = {name!r}: must be one of {sorted(dop853.METHODS)}")
+    return dop853.METHODS[name]
 
 
 def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *,
@@ -158,7 +159,7 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     out = np.empty((c.n_samples if store else 0, len(y0)))
     args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
             c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out)
-    m = (engine.integrate_dop853(*args, *engine.tableau(code)) if code == engine.DOP853
+    m = (dop853.integrate_dop853(*args, *dop853.tableau(code)) if code == dop853.DOP853
          else engine.integrate(*args))
     _raise_on_failure(m)
     result = RunResult.from_metrics(m, c.t_end)
@@ -211,10 +212,9 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     result = np.empty((n, engine.N_METRICS))
     for start in range(0, n, chunk):
         idx = order[start:start + chunk]
-        result[idx] = engine.integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol,
-                                             atol, c.sample_dt, c.r_threshold, c.f_threshold,
-                                             MAX_STEPS, np.arange(len(idx)), code,
-                                             *engine.tableau(code))
+        result[idx] = integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol, atol,
+                                      c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS,
+                                      np.arange(len(idx)), code, *dop853.tableau(code))
         if progress and n > chunk:
             done = min(start + chunk, n)
             print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
