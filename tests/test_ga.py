@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from rotorvib.methods.ga import minimise, minimise_many
+from rotorvib.methods.ga import minimise, minimise_many, pareto_front
 from rotorvib.models.absorber.parameters import dual_to_vector
 from rotorvib.papers.c.optimise import design_bounds, resonance_objective, tune_dual_absorber
 
@@ -57,3 +57,28 @@ def test_problems_in_lockstep_equal_separate_runs():
         np.testing.assert_array_equal(res.x, alone.x)
         np.testing.assert_array_equal(res.history["best_f"], alone.history["best_f"])
         np.testing.assert_array_equal(res.history["n_eval"], alone.history["n_eval"])
+
+
+def _two_centres(x):
+    """Schaffer-type problem: distances squared to (0, 0) and (2, 0); the Pareto set is the
+    segment x1 = 0, 0 <= x0 <= 2, the front f2 = (2 - sqrt(f1))^2."""
+    return np.column_stack([np.sum(x**2, axis=1), (x[:, 0] - 2) ** 2 + x[:, 1] ** 2])
+
+
+def test_nsga2_recovers_an_analytic_pareto_front():
+    front = pareto_front(_two_centres, 2, [-3.0, -3.0], [3.0, 3.0], pop_size=40, n_gen=80,
+                         seed=2)
+    f1, f2 = front.f.T
+    gap = f2 - (2 - np.sqrt(f1)) ** 2             # >= 0: nothing beats the true front
+    assert gap.min() > -1e-12 and np.median(gap) < 1e-3
+    np.testing.assert_allclose(front.f, _two_centres(front.x))
+    assert np.all(np.diff(f1) >= 0) and f1[0] < 0.01 and f2[-1] < 0.01     # spans the front
+    assert front.n_eval == 40 * 80
+    again = pareto_front(_two_centres, 2, [-3.0, -3.0], [3.0, 3.0], pop_size=40, n_gen=80,
+                         seed=2)
+    np.testing.assert_array_equal(front.x, again.x)
+
+
+def test_nsga2_refuses_a_wrong_objective_shape():
+    with pytest.raises(ValueError, match=r"expected \(8, 2\)"):
+        pareto_front(lambda x: x[:, 0], 2, [0.0, 0.0], [1.0, 1.0], pop_size=8, n_gen=2, seed=0)

@@ -52,6 +52,27 @@ def test_two_term_initial_conditions_are_met():
     np.testing.assert_allclose(ms.two_term(x0, np.array([0.0]))[0], x0, atol=1e-12)
 
 
+def test_linear_constants_meet_the_initial_state_and_keep_the_order():
+    """The linear constants start exactly at x0, differ from the nonlinear ones by O(delta^3)
+    (slope 3 in delta), and the solution they give errs at the two-term order."""
+    ms = MultipleScales.at(J2, T2)
+    tau = np.linspace(0, 15, 301)
+    gaps, errors = [], []
+    for delta in (0.02, 0.01):
+        x0 = np.array([delta, 0.5 * delta])
+        np.testing.assert_allclose(ms.two_term(x0, tau[:1], constants="linear")[0], x0,
+                                   atol=1e-15)
+        first, second = ms.linear_two_term_constants(x0)
+        np.testing.assert_array_equal(second, ms.one_term_constants(x0))
+        gaps.append(np.abs(first - ms.two_term_constants(x0)).max())
+        errors.append(np.abs(ms.two_term(x0, tau, constants="linear")
+                             - exact_quadratic(x0, tau)).max())
+    assert np.log2(gaps[0] / gaps[1]) == pytest.approx(3, abs=0.1)
+    assert np.log2(errors[0] / errors[1]) == pytest.approx(3, abs=0.2)
+    with pytest.raises(ValueError, match="constants must be"):
+        ms.two_term(x0, tau, constants="quadratic")
+
+
 def test_resonances_are_reported():
     T = np.zeros((3, 3, 3))
     exact = MultipleScales.at(np.diag([-1.0, -2.0, -3.0]), T)          # -1 + -2 = -3

@@ -51,8 +51,10 @@ FIGURES["a"] = {
         "error_study",
         {"err": "error_study"},
         "Beyond the paper: the largest error of the one-term and two-term solutions against "
-        "Runge-Kutta as the initial distance from the balanced state shrinks, with the "
-        f"expected orders.{A_MODEL}",
+        "Runge-Kutta as the initial distance from the balanced state shrinks, the two-term "
+        "one with the constants of the eight nonlinear equations and with linear ones (the "
+        "one-term constants plus a homogeneous part cancelling the second-order term at "
+        f"tau = 0), with the expected orders.{A_MODEL}",
         items=["Error study"],
     ),
     "slow_flow": figure(

@@ -5,6 +5,7 @@ import sys
 from rotorvib.comparison import paper_values_of, write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.models.absorber.parameters import Rotor
+from rotorvib.papers.c.broadband import broadband_rows
 from rotorvib.papers.c.claims import reproduce
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
@@ -14,4 +15,5 @@ rotor = Rotor(**p.rotor)
 data = {name: read_dataset(snakemake.input[name], expected_config) for name in ("ga", "fr", "mr", "distance", "tr")}
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
                  paper_values=paper_values_of(snakemake.input.paper_values, "C"))
+rows += broadband_rows(read_dataset(snakemake.input.bb, expected_config))
 write_reproduced(rows, snakemake.output[0])

@@ -1,4 +1,5 @@
-"""Seeded, vectorised genetic-algorithm minimisation (pymoo) with a per-generation history."""
+"""Seeded, vectorised genetic-algorithm minimisation (pymoo) with a per-generation history, and
+the Pareto front of two or more objectives by NSGA-II."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
+from pymoo.algorithms.moo.nsga2 import NSGA2
 from pymoo.algorithms.soo.nonconvex.ga import GA
 from pymoo.core.callback import Callback
 from pymoo.core.problem import Problem
@@ -23,6 +25,16 @@ class GAResult:
     x: np.ndarray
     f: float
     history: dict[str, np.ndarray]
+
+
+@dataclass(frozen=True)
+class ParetoFront:
+    """Non-dominated designs ``x`` (rows) with objectives ``f`` (rows), sorted by the first
+    objective, and the number of evaluations ``n_eval`` spent."""
+
+    x: np.ndarray
+    f: np.ndarray
+    n_eval: int
 
 
 class _HandedOver(Problem):
@@ -135,3 +147,40 @@ def minimise(objective: Callable[[np.ndarray], np.ndarray], lower, upper, *, pop
     return minimise_many(lambda xs: [objective(xs[0])], 1, lower, upper, pop_size=pop_size,
                          n_gen=n_gen, seed=seed, sbx_eta=sbx_eta, pm_eta=pm_eta,
                          progress=progress)[0]
+
+
+class _Vectorised(Problem):
+    """Box-bounded problem with ``n_obj`` objectives evaluated on a whole population at once."""
+
+    def __init__(self, objectives, n_obj, lower, upper):
+        super().__init__(n_var=len(lower), n_obj=n_obj, xl=lower, xu=upper)
+        self._objectives = objectives
+
+    def _evaluate(self, x, out, *args, **kwargs):
+        f = np.asarray(self._objectives(x), dtype=float)
+        if f.shape != (len(x), self.n_obj):
+            raise ValueError(f"objectives: returned shape {f.shape} for a population of "
+                             f"{len(x)}, expected ({len(x)}, {self.n_obj})")
+        for j in range(self.n_obj):
+            _checked(f[:, j], x)
+        out["F"] = f
+
+
+def pareto_front(objectives: Callable[[np.ndarray], np.ndarray], n_obj: int, lower, upper, *,
+                 pop_size: int, n_gen: int, seed: int, sbx_eta: float = 15.0,
+                 pm_eta: float = 20.0) -> ParetoFront:
+    """Minimise ``objectives(X) -> F`` (``X`` of shape ``(pop, n_var)``, ``F`` of shape
+    ``(pop, n_obj)``) over the box ``[lower, upper]`` with pymoo's NSGA-II (non-dominated
+    sorting and crowding distance; SBX crossover, polynomial mutation) for exactly ``n_gen``
+    generations; deterministic for a ``seed``.  Argument errors as :func:`minimise_many`."""
+    lower, upper = _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta)
+    problem = _Vectorised(objectives, integer("n_obj", n_obj, 2), lower, upper)
+    algorithm = NSGA2(pop_size=pop_size, crossover=SBX(eta=sbx_eta), mutation=PM(eta=pm_eta),
+                      eliminate_duplicates=True)
+    algorithm.setup(problem, termination=("n_gen", n_gen), seed=seed, verbose=False)
+    while algorithm.has_next():
+        algorithm.next()
+    opt = algorithm.result()
+    order = np.argsort(opt.F[:, 0], kind="stable")
+    return ParetoFront(x=np.asarray(opt.X, float)[order], f=np.asarray(opt.F, float)[order],
+                       n_eval=int(algorithm.evaluator.n_eval))

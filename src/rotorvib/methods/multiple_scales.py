@@ -9,7 +9,11 @@ Write ``z = z* + x`` with ``f(z* + x) = J x + 1/2 H(x, x) + O(|x|^3)`` and expan
   constants follow linearly from the initial state;
 * order eps^2 (two-term solution, eqs 34-39): ``x2 = sum_jk A_j A_k c_jk exp((lambda_j +
   lambda_k) tau)`` with ``c_jk = ((lambda_j + lambda_k) I - J)^-1 1/2 H(phi_j, phi_k)``; the
-  constants solve the eight nonlinear equations ``x(0) = sum_j A_j phi_j + sum_jk A_j A_k c_jk``.
+  constants solve the eight nonlinear equations ``x(0) = sum_j A_j phi_j + sum_jk A_j A_k c_jk``;
+* the same order with linear constants (beyond the paper): keep the one-term constants
+  ``A = Phi^-1 x(0)`` in the second-order term and add a homogeneous part ``B`` that cancels it
+  at ``tau = 0``, ``Phi B = -sum_jk A_j A_k c_jk``.  The nonlinear constants are ``A + B +
+  O(|x0|^3)``, so both solutions err by ``O(|x0|^3)``.
 
 The solver is generic in the vector field: it needs only ``J`` and the symmetric quadratic
 tensor ``T`` with ``H(u, v)_i = sum_jk T_ijk u_j v_k``.  A near-resonance
@@ -110,16 +114,34 @@ class MultipleScales:
                                   f"{misfit:.2e}): {sol.message}")
         return sol.x[:n] + 1j * sol.x[n:]
 
+    def linear_two_term_constants(self, x0) -> tuple[np.ndarray, np.ndarray]:
+        """``(A + B, A)``: the first-order term's constants (one-term constants plus the
+        homogeneous part with ``Phi B = -sum_jk A_j A_k c_jk``) and the second-order term's
+        (the one-term constants), both from linear solves only."""
+        a = self.one_term_constants(x0)
+        if np.isnan(self.second_order).any():
+            raise ArithmeticError("exact internal resonance: the two-term expansion needs "
+                                  "secular terms")
+        b = np.linalg.solve(self.modes, -np.einsum("j,k,jki->i", a, a, self.second_order))
+        return a + b, a
+
     def one_term(self, x0, tau) -> np.ndarray:
         """``x(tau)`` of the one-term solution, shape ``(len(tau), n)`` (real)."""
         a = self.one_term_constants(x0)
         e = np.exp(np.outer(finite_array("tau", tau, shape=(None,)), self.eigenvalues))
         return np.real((e * a) @ self.modes.T)
 
-    def two_term(self, x0, tau) -> np.ndarray:
-        """``x(tau)`` of the two-term solution, shape ``(len(tau), n)`` (real)."""
-        a = self.two_term_constants(x0)
+    def two_term(self, x0, tau, constants: str = "nonlinear") -> np.ndarray:
+        """``x(tau)`` of the two-term solution, shape ``(len(tau), n)`` (real), with the
+        constants of the eight nonlinear equations (``constants="nonlinear"``, eq. 39) or the
+        linear ones (``"linear"``, :meth:`linear_two_term_constants`)."""
+        if constants == "nonlinear":
+            first_a = second_a = self.two_term_constants(x0)
+        elif constants == "linear":
+            first_a, second_a = self.linear_two_term_constants(x0)
+        else:
+            raise ValueError(f"constants must be 'nonlinear' or 'linear', not {constants!r}")
         e = np.exp(np.outer(finite_array("tau", tau, shape=(None,)), self.eigenvalues))
-        first = (e * a) @ self.modes.T
-        second = np.einsum("tj,tk,j,k,jki->ti", e, e, a, a, self.second_order)
+        first = (e * first_a) @ self.modes.T
+        second = np.einsum("tj,tk,j,k,jki->ti", e, e, second_a, second_a, self.second_order)
         return np.real(first + second)

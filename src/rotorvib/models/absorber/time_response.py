@@ -8,7 +8,10 @@ State ``y = [theta, u_1..u_n, theta', u_1'..u_n']`` for ``n`` absorber sets, for
   + k_t theta = Gamma`` and ``m_j u_j'' + m_j d_j theta'' - m_j u_j theta'^2 + 2 c_j u_j'
   + 2 k_j u_j = 0``, solved for the accelerations by eliminating ``u_j''`` (the reduced disk
   inertia ``J + sum 2 m_j u_j^2`` is always positive);
-* :func:`rhs_linear` is the matrix form (14), ``M q'' + C q' + K q = [Gamma, 0, ...]``.
+* :func:`rhs_linear` is the matrix form (14), ``M q'' + C q' + K q = [Gamma, 0, ...]``;
+* :func:`linear_response` solves (14) exactly: with ``y = [q, q']``, ``y' = A y + b cos(w t)``,
+  ``y(t) = Re(Y e^{i w t}) + V e^{Lambda t} V^-1 (y(0) - Re Y)`` for ``(i w I - A) Y = b`` and
+  ``A = V Lambda V^-1``.
 """
 
 from __future__ import annotations
@@ -64,6 +67,30 @@ def simulate(rotor: Rotor, sets, omega: float, t, *, model: str = "nonlinear",
     else:
         raise ValueError(f"model must be 'nonlinear' or 'linear', not {model!r}")
     return y[:, :n]
+
+
+def linear_response(rotor: Rotor, sets, omega: float, t) -> np.ndarray:
+    """Exact response of eq. (14) from rest at times ``t`` (module docstring), shape
+    ``(len(t), 1 + n_sets)`` like :func:`simulate`; needs a damped design (``i w`` not an
+    eigenvalue of ``A``)."""
+    number("omega", omega, what=" (forcing frequency, rad/s)")
+    M, C, K = matrices(rotor, sets)
+    n = len(M)
+    minv = np.linalg.inv(M)
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-minv @ K, -minv @ C]])
+    b = np.concatenate((np.zeros(n), minv[:, 0] * rotor.Gamma0))
+    forced = np.linalg.solve(1j * omega * np.eye(2 * n) - A, b)
+    lam, V = np.linalg.eig(A)
+    free = np.linalg.solve(V, -forced.real.astype(complex))
+    t = np.asarray(t, dtype=float)[:, None]
+    y = np.real(forced * np.exp(1j * omega * t)) + np.real((V @ (free * np.exp(lam * t)).T).T)
+    return y[:, :n]
+
+
+def response_times(omega: float, t_end: float, samples_per_period: int) -> np.ndarray:
+    """Times ``0 .. t_end`` at ``samples_per_period`` samples per forcing period ``2 pi/omega``."""
+    period = 2 * np.pi / number("omega", omega, what=" (forcing frequency, rad/s)")
+    return np.linspace(0.0, t_end, int(round(t_end / period * samples_per_period)) + 1)
 
 
 def undamped_resonance_envelope(rotor: Rotor, t):

@@ -124,10 +124,11 @@ def fig7(region, paper):
 def error_study(err, paper):
     fig, ax = figure()
     d = err.delta.values
-    for name, color, slope in (("error_one_term", "C1", float(err.slope_one_term)),
-                               ("error_two_term", "C0", float(err.slope_two_term))):
-        ax.loglog(d, err[name].values, "o-", color=color,
-                  label=f"{name.replace('error_', '').replace('_', ' ')}: slope {slope:.2f}")
+    for name, label, style in (("one_term", "one term", "o-C1"),
+                               ("two_term", "two terms, nonlinear constants (eq. 39)", "o-C0"),
+                               ("two_term_linear", "two terms, linear constants", "s--C2")):
+        ax.loglog(d, err[f"error_{name}"].values, style, mfc="none" if "s" in style else None,
+                  label=f"{label}: slope {float(err[f'slope_{name}']):.2f}")
     for order, ls in ((2, ":"), (3, "--")):
         ref = err.error_one_term.values[-1] if order == 2 else err.error_two_term.values[-1]
         ax.loglog(d, ref * (d / d[-1]) ** order, "k", ls=ls, lw=0.8, label=f"delta^{order}")
@@ -135,7 +136,7 @@ def error_study(err, paper):
            ylabel="max error against Runge-Kutta", title="Error of the multiple-scales solutions")
     ax.set_xticks(d, [f"{x:g}" for x in d])      # the computed distances, not crowded minor
     ax.xaxis.set_minor_locator(NullLocator())   # log ticks
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left")
     return fig
 
 

@@ -7,6 +7,7 @@ id (``data/paper_values.csv``), and returns a matplotlib figure.
 from __future__ import annotations
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from rotorvib.io.coords import labels, pick
 from rotorvib.io.plotting import figure, paper_hline, paper_point, paper_vline
@@ -162,4 +163,46 @@ def ga_convergence(ga, paper):
     ax.set(xlabel="generation", ylabel="|Theta(omega_n)| (rad)",
            title="Genetic algorithm: convergence of the objective")
     ax.legend()
+    return fig
+
+
+def broadband(bb, paper):
+    """Beyond the paper: the broadband optimum beside Table 2, the single-frequency optimum and
+    Den Hartog's absorber; frequency responses, time responses at resonance, Pareto front."""
+    fig, axes = figure(1, 3, figsize=(15.0, 4.8))
+    names = [str(n) for n in bb.design_name.values]
+    ax = axes[0]
+    ax.semilogy(bb.w.values, bb.D_none.values, "k", lw=0.8, label="no absorber")
+    for i, name in enumerate(names):
+        ax.semilogy(bb.w.values, bb.D.values[i], color=f"C{i}", lw=1.2,
+                    label=f"{name}: peak {float(bb.peak[i]):.3g}")
+    for edge in (float(bb.band_w[0]), float(bb.band_w[-1])):
+        ax.axvline(edge, color="0.5", ls="--", lw=0.8,
+                   label="band of the objective" if edge == float(bb.band_w[0]) else None)
+    ax.set_ylim(0.5, 20 * float(bb.peak.max()))
+    ax.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
+           title="frequency responses, eq. (20)")
+    ax.legend(fontsize=7, loc="upper left")
+    ax = axes[1]
+    t = bb.t.values
+    per_period = max(int(round(2 * np.pi / float(bb.omega_n) / (t[1] - t[0]))), 1)
+    for i, name in enumerate(names):
+        envelope = sliding_window_view(np.abs(bb.theta.values[i]), per_period).max(axis=1)
+        ax.plot(t[per_period - 1:], envelope, color=f"C{i}", lw=1.2, label=name)
+    ax.set(xlabel="time t (s)", ylabel="largest |theta| over the last period (rad)",
+           title="from rest under Gamma0 cos(omega_n t), eq. (14) exactly")
+    ax.legend(fontsize=7, loc="upper right")
+    ax = axes[2]
+    mass = bb.front_added_mass.values
+    ax.plot(mass, bb.front_band_peak.values, "o", ms=3, color="C3", label="NSGA-II front (dual)")
+    order = np.argsort(mass)
+    ax.plot(mass[order], bb.front_den_hartog_peak.values[order], color="C2", lw=1,
+            label="Den Hartog single absorber, same mass")
+    for i, name in enumerate(names):
+        ax.plot(float(bb.added_mass[i]), float(bb.band_peak[i]), "s", color=f"C{i}", ms=7,
+                mfc="none", mew=1.5, label=name)
+    ax.set_yscale("log")
+    ax.set(xlabel="added mass 2 (m1 + m2) (kg)", ylabel="largest D over the band",
+           title="Pareto front within the bounds of section 4")
+    ax.legend(fontsize=7)
     return fig

@@ -20,7 +20,8 @@ from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
                                                          steady_state, theta_eq20)
 from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
                                                  dual_to_vector, effective_mass_ratio, undamped)
-from rotorvib.models.absorber.time_response import simulate, undamped_resonance_envelope
+from rotorvib.models.absorber.time_response import (response_times, simulate,
+                                                    undamped_resonance_envelope)
 from rotorvib.models.absorber.tuning import CONSTRUCTIONS, den_hartog_single, mass_ratio_family
 from rotorvib.papers.c.optimise import design_bounds
 
@@ -199,8 +200,7 @@ def time_response_dataset(rotor: Rotor, table2, d_single: float, *, t_end: float
     """Figs 3, 4, 7: responses from rest to Gamma0 cos(omega_n t), linear (14) and nonlinear
     (8)-(10), without absorber, with the Den Hartog single set (ref. [8] stand-in) and with the
     Table 2 dual absorber."""
-    period = 2 * np.pi / rotor.omega_n
-    t = np.linspace(0.0, t_end, int(round(t_end / period * samples_per_period)) + 1)
+    t = response_times(rotor.omega_n, t_end, samples_per_period)
     single = den_hartog_single(rotor, m=table2[0].m + table2[1].m, d=d_single)
     cases = {"none": (), "single": (single,), "dual": tuple(table2)}
     models = ("linear", "nonlinear")

@@ -1,0 +1,50 @@
+"""The broadband absorber (beyond paper C): its objectives against independent routes, the
+floor of two tuned sets, and an NSGA-II front that beats Table 2 at Table 2's mass."""
+
+import numpy as np
+import pytest
+
+from rotorvib.methods.ga import ParetoFront
+from rotorvib.models.absorber.frequency_response import (dimensionless_amplitude,
+                                                         natural_frequencies, steady_state)
+from rotorvib.models.absorber.parameters import AbsorberSet, dual_from_vector, dual_to_vector
+from rotorvib.papers.c.broadband import (added_mass, band_peak, broadband_front, pick_at_mass,
+                                         tuned_mass_floor)
+
+W = np.linspace(0.7, 1.3, 241)
+
+
+def test_band_peak_equals_the_linear_solve(rotor, table2):
+    """Eq. (20) vectorised over designs against the linear solve of eq. (17), design by design."""
+    x = np.stack([dual_to_vector(table2), dual_to_vector(table2) * [1.2, 1, 1, 1.1, 1, 2, 1, 1]])
+    for xi, peak in zip(x, band_peak(rotor, x, W)):
+        D = dimensionless_amplitude(rotor, steady_state(rotor, dual_from_vector(xi),
+                                                        W * rotor.omega_n)[:, 0])
+        assert peak == pytest.approx(D.max(), rel=1e-12)
+    assert added_mass(dual_to_vector(table2)) == pytest.approx(2 * (0.1 + 0.085))
+
+
+def test_the_tuned_mass_floor_tunes_each_set_to_omega_n(rotor):
+    """Two sets at the floor, springs at k_min: each set alone (on a clamped disk) has
+    2 k / m = omega_n^2."""
+    k_min = 1.0e4
+    m = tuned_mass_floor(rotor, k_min) / 4
+    s = AbsorberSet(m=m, k=k_min, c=0.0, d=1e-9)       # d -> 0: the set decouples from the disk
+    assert np.sqrt(2 * s.k / s.m) == pytest.approx(rotor.omega_n, rel=1e-12)
+    assert natural_frequencies(rotor, (s, s)) == pytest.approx([1.0, 1.0, 1.0], rel=1e-6)
+
+
+def test_the_front_beats_table2_at_its_mass(rotor, table2, config):
+    bounds = config["paper_c"]["bounds"]
+    front = broadband_front(rotor, bounds, W, pop_size=40, n_gen=40, seed=3)
+    mass = float(added_mass(dual_to_vector(table2)))
+    best = pick_at_mass(front, mass)
+    assert added_mass(best) <= mass
+    assert band_peak(rotor, best, W) < band_peak(rotor, dual_to_vector(table2), W)
+    assert np.all(np.diff(front.f[:, 1]) <= 0)      # a front: more peak, less mass
+
+
+def test_no_design_of_the_front_light_enough_is_an_error():
+    front = ParetoFront(x=np.zeros((1, 8)), f=np.array([[3.0, 0.5]]), n_eval=1)
+    with pytest.raises(ValueError, match="no design of the front adds at most 0.4 kg"):
+        pick_at_mass(front, 0.4)

@@ -1,0 +1,27 @@
+"""Rule c_broadband: the broadband absorber (beyond paper C), NSGA-II front and comparison."""
+
+import sys
+
+import numpy as np
+
+from rotorvib.io.datasets import Provenance, job_config, read_dataset, write_dataset
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
+from rotorvib.models.absorber.time_response import response_times
+from rotorvib.papers.c.broadband import broadband_dataset, broadband_front
+
+sys.stderr = open(snakemake.log[0], "w", buffering=1)
+expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+p = snakemake.params
+rotor = Rotor(**p.rotor)
+b, fr, time = p.broadband, p.grid, p.time
+band_w = np.linspace(*b["band"], b["n_band"])
+front = broadband_front(rotor, p.bounds, band_w, **b["nsga"])
+print(f"NSGA-II: {len(front.f)} designs on the front, {front.n_eval} evaluations",
+      file=sys.stderr)
+t = response_times(rotor.omega_n, time["t_end"], time["samples_per_period"])
+ga = read_dataset(snakemake.input.ga, expected_config)
+ds = broadband_dataset(rotor, dual_absorber(**p.table2), ga.x_opt.values, b["den_hartog_d"],
+                       front, band_w, np.linspace(fr["w_min"], fr["w_max"], fr["n_points"]), t,
+                       k_min=p.bounds["k"][0])
+write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p),
+                                                  b["nsga"]["seed"]))
