@@ -77,6 +77,8 @@ CASES = [
     ("paper_b.basin.n", 1000, None),
     ("paper_b.basin.cases", [[0.2, 0.001]], "paper_b.basin.cases.0"),
     ("paper_b.claims.beta_opt_range", [0.2, 0.1], None),
+    ("paper_b.claims.ics_typical_share", [0.9, 0.1], None),
+    ("paper_b.claims.ics_typical_share", [0.1, 1.5], "paper_b.claims.ics_typical_share.1"),
     # paper A
     ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),
     ("paper_a.tau_step", 200.0, None), ("paper_a.zoom", [0.0, 500.0], None),

@@ -161,3 +161,24 @@ def test_the_share_balanced_by_a_time_counts_censored_runs_as_never():
     times = np.array([[1.0, 2.0], [np.nan, 3.0]])
     assert [share_balanced_by(times, t) for t in (0.5, 1.0, 2.5, 3.0, 1e9)] == \
         [0.0, 0.25, 0.5, 0.75, 0.75]
+
+
+def test_an_ic_is_typical_when_its_share_lies_in_the_band():
+    """faster_share places a censored IC after every balanced run; basin_rows holds only when
+    every IC of every case lies within the band, under each kinematics."""
+    import xarray as xr
+
+    from rotorvib.papers.b.claims import basin_rows, faster_share
+
+    times = np.array([[1.0, 2.0], [np.nan, 3.0]])
+    assert faster_share(times, np.nan) == 0.75 and faster_share(times, 2.0) == 0.5
+    grid = np.broadcast_to(np.arange(1.0, 11.0).reshape(1, 1, 10, 1), (1, 1, 10, 1))
+    basin = xr.Dataset(
+        {"balance_time": (("kinematics", "case", "phi1", "phi2"), grid),
+         "ic_balance_time": (("kinematics", "case", "ic"), [[[2.0, 5.0, 9.0]]])},
+        coords={"kinematics_name": ("kinematics", ["printed"]), "case_beta": ("case", [0.2]),
+                "case_mass": ("case", [0.006]), "ic_name": ("ic", ["IC1", "IC2", "IC3"])})
+    (row,) = basin_rows(basin, "printed", (0.1, 0.9))
+    assert row.holds == (("", True),) and "IC1 20%, IC2 50%, IC3 90%" in row.explanation
+    (row,) = basin_rows(basin, "printed", (0.25, 0.9))
+    assert row.holds == (("", False),)

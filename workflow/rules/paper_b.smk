@@ -125,6 +125,7 @@ FIGURES["b"] = {
         "Beyond the paper: the balance time as a distribution over initial ball positions "
         "placed at random (the basin map's uniform grid), with the share of positions "
         "balanced by each time, and where the paper's three initial conditions fall in it.",
+        items=["Basin"],
     ),
     "kinematics": figure(
         "kinematics_shift",
@@ -372,6 +373,7 @@ rule b_reproduced_values:
         ga=rules.b_ga.output[0],
         table1=rules.b_table1_runs.output[0],
         forces=rules.b_forces.output[0],
+        basin=rules.b_basin.output[0],
         paper_values=PAPER_VALUES,
     output:
         "results/paper_b/reproduced.csv",
@@ -383,6 +385,7 @@ rule b_reproduced_values:
         R=B["machine"]["R"],
         ga=B["ga"],
         beta_band=B["claims"]["beta_opt_range"],
+        typical=B["claims"]["ics_typical_share"],
     message:
         "Paper B: measuring the paper's stated values and claims on the datasets"
     script:

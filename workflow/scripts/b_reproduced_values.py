@@ -11,6 +11,6 @@ expected_config = snakemake.params.inputs_config_sha256  # each input's producer
 p = snakemake.params
 data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
         if name != "paper_values"}
-rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band,
+rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  paper_values=paper_values_of(snakemake.input.paper_values, "B"))
 write_reproduced(rows, snakemake.output[0])

@@ -50,6 +50,36 @@ def share_balanced_by(times, t) -> float:
     return float(np.count_nonzero(times <= t) / times.size)
 
 
+def faster_share(times, t) -> float:
+    """The share of runs of ``times`` no slower than an initial condition balanced at ``t``:
+    :func:`share_balanced_by` for a balanced one, and for a censored one (NaN) the share
+    balanced at all, since it is slower than every balanced run."""
+    return share_balanced_by(times, t) if np.isfinite(t) else share_balanced_by(times, np.inf)
+
+
+def basin_rows(basin: xr.Dataset, kin: str, typical) -> list[Reproduced]:
+    """Are the paper's three ICs typical of balls placed at random?  Each IC's share of
+    initial positions no slower (:func:`faster_share`) must lie within ``typical``, for every
+    (beta, m) case of the basin map."""
+    b = pick(basin, kinematics=kin)
+    lo, hi = typical
+    parts, holds = [], True
+    for j in range(b.case.size):
+        at = b.isel(case=j)
+        times = at.balance_time.values
+        shares = [faster_share(times, t) for t in at.ic_balance_time.values]
+        holds &= all(lo <= x <= hi for x in shares)
+        parts.append(f"beta = {float(at.case_beta):g}, m = {1e3 * float(at.case_mass):g} g: "
+                     + ", ".join(f"{ic} {x:.0%}" for ic, x in
+                                 zip(labels(at, "ic"), shares))
+                     + f" (median of random positions {np.nanmedian(times):.3g} s, "
+                       f"{share_balanced_by(times, np.inf):.0%} balanced)")
+    return [_claim("ics_typical", holds,
+                   "share of initial ball positions (uniform grid of the basin map) balancing "
+                   "no later than each IC; typical means within "
+                   f"{lo:.0%}-{hi:.0%}: " + "; ".join(parts))]
+
+
 def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
     """Optimum mass (minimum mean balance time over the ICs) and that mean, per speed."""
     t = pick(t1, kinematics=kinematics)
@@ -356,14 +386,16 @@ def cost_rows(beta: xr.Dataset, mass: xr.Dataset, ga: xr.Dataset) -> list[Reprod
                    "parameter at a time with the other fixed, the GA both at once")]
 
 
-def reproduce(*, st2, st3, tr, beta, mass, ga, table1, forces, R, ga_bounds, beta_band,
-              paper_values) -> list[Reproduced]:
+def reproduce(*, st2, st3, tr, beta, mass, ga, table1, forces, basin, R, ga_bounds, beta_band,
+              typical, paper_values) -> list[Reproduced]:
     """All paper B rows from the datasets.  Every row is evaluated under each kinematics of the
     datasets; the first (the printed one in the paper's configuration) is the reproduction,
     and a claim's verdict says under which kinematics it holds.  The stability maps (constant
     speed) do not depend on the kinematics.  ``beta_band`` is the paper's claimed optimum
-    interval of beta."""
+    interval of beta; ``typical`` the band of shares within which an IC counts as typical of
+    random initial ball positions."""
     rows = {kin: table_rows(table1, forces, R, kin, paper_values) + response_rows(tr, kin)
             + grid_rows(beta, mass, kin, beta_band) + ga_rows(ga, kin, ga_bounds, beta_band)
+            + basin_rows(basin, kin, typical)
             for kin in labels(beta, "kinematics")}
     return merge_variants(rows) + stability_rows(st2, st3) + cost_rows(beta, mass, ga)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorvib.io.coords import labels, pick
-from rotorvib.papers.b.claims import share_balanced_by
+from rotorvib.papers.b.claims import faster_share
 from rotorvib.io.plotting import PAPER_STYLE, figure, paper_hline, paper_vline
 
 STYLES = {0: "-", 1: "--"}
@@ -259,7 +259,7 @@ def basin_distribution(basin, paper):
             ax.step(finite, share, where="post", color=color, ls=ls,
                     label=f"{case}, {kinematics} (balanced by t_end: {share[-1]:.0%})")
             for k, (ic, t) in enumerate(zip(labels(b, "ic"), b.ic_balance_time.values)):
-                at = share_balanced_by(times, t)
+                at = faster_share(times, t)
                 ax.plot(t, at, "o", color=color, mfc="white" if ls == "--" else color, ms=5)
                 if ls == "-":                        # staggered: close ICs stay readable
                     ax.annotate(f"{ic}: {at:.0%}", (t, at), xytext=(6, -12 - 10 * k),
