@@ -12,21 +12,24 @@ so ``T_a = M0^-1 G2 + B + B^T`` with ``B_imn = -(M0^-1)_ir (dM_rs/dz_m) (M0^-1 G
 
 from __future__ import annotations
 
+import sys
 from functools import lru_cache
 
 import numpy as np
 import sympy as sp
 
-from rotorvib.models.balancer.stability import (BETA, MU, OMEGA, RHO, TAU, ZETA,
-                                                rotating_lagrange_equations)
+from rotorvib.methods.codegen import cached_lambdify
+from rotorvib.models.balancer import stability
+from rotorvib.models.balancer.stability import PARAMETERS, TAU, rotating_lagrange_equations
 
-PARAMS = (MU, RHO, ZETA, BETA, OMEGA)
+STATE = sp.symbols("u v a1 a2 up vp a1p a2p", real=True)
 
 
 @lru_cache(maxsize=1)
-def _derivative_functions():
+def _derivatives():
+    """Symbolic ``(M, G1, G2, dM)`` (module docstring) in the parameters and the state."""
     q, eqs = rotating_lagrange_equations()
-    z = sp.symbols("u v a1 a2 up vp a1p a2p", real=True)
+    z = STATE
     acc = sp.symbols("udd vdd a1dd a2dd", real=True)
     subs = {}
     for qj, zq, zp, zd in zip(q, z[:4], z[4:], acc):
@@ -38,8 +41,15 @@ def _derivative_functions():
     G1 = G.jacobian(z)
     G2 = [[[sp.diff(G[i], z[m], z[k]) for k in range(8)] for m in range(8)] for i in range(4)]
     dM = [[[sp.diff(M[r, s], z[m]) for m in range(8)] for s in range(4)] for r in range(4)]
-    args = PARAMS + z
-    return tuple(sp.lambdify(args, X, "numpy") for X in (M, G1, G2, dM))
+    return M, G1, G2, dM
+
+
+@lru_cache(maxsize=1)
+def _derivative_functions():
+    return tuple(cached_lambdify(f"taylor_{name}", PARAMETERS + STATE,
+                                 lambda i=i: _derivatives()[i],
+                                 modules=(sys.modules[__name__], stability))
+                 for i, name in enumerate(("M", "G1", "G2", "dM")))
 
 
 def taylor_at(mu, rho, zeta, beta, omega, state) -> tuple[np.ndarray, np.ndarray]:

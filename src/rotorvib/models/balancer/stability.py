@@ -17,14 +17,18 @@ section 4).  Everything is vectorised over parameter grids (stacked ``eigvals``)
 
 from __future__ import annotations
 
+import sys
 from functools import lru_cache
 
 import numpy as np
 import sympy as sp
 
+from rotorvib.methods.codegen import cached_lambdify
+
 MU, RHO, ZETA, BETA, OMEGA = sp.symbols("mu rho zeta beta Omega", positive=True)
 TAU = sp.Symbol("tau", real=True)
 LAMBDA = sp.Symbol("lambda")
+PARAMETERS = (MU, RHO, ZETA, BETA, OMEGA)
 N_BALLS = 2
 
 
@@ -88,9 +92,10 @@ def pencil_matrices():
 
 @lru_cache(maxsize=1)
 def _numeric_pencil():
-    M, C, K = pencil_matrices()
-    args = (MU, RHO, ZETA, BETA, OMEGA)
-    return tuple(sp.lambdify(args, list(X), "numpy") for X in (M, C, K))
+    return tuple(cached_lambdify(f"pencil_{name}", PARAMETERS,
+                                 lambda i=i: list(pencil_matrices()[i]),
+                                 modules=(sys.modules[__name__],))
+                 for i, name in enumerate("MCK"))
 
 
 def _stack(f, shape, *values):
@@ -135,8 +140,9 @@ def characteristic_polynomial() -> sp.Poly:
 
 @lru_cache(maxsize=1)
 def _coefficient_function():
-    coeffs = characteristic_polynomial().all_coeffs()
-    return sp.lambdify((MU, RHO, ZETA, BETA, OMEGA), coeffs, "numpy")
+    return cached_lambdify("characteristic_coefficients", PARAMETERS,
+                           lambda: characteristic_polynomial().all_coeffs(),
+                           modules=(sys.modules[__name__],))
 
 
 def polynomial_roots(mu, rho, zeta, beta, omega) -> np.ndarray:

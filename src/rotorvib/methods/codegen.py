@@ -1,0 +1,71 @@
+"""Numeric functions generated from sympy expressions, cached on disk as Python source.
+
+Deriving the balancer's linearisation, characteristic polynomial and Taylor terms takes sympy
+seconds (simplification, a symbolic determinant), and every workflow job that needs them is a
+new process.  :func:`cached_lambdify` keeps the source that ``sympy.lambdify`` generates in the
+``__pycache__`` folder beside the module that asks for it, as numba's ``cache=True`` keeps
+compiled code, and later processes execute that source instead of deriving again.
+
+The cache key is a SHA-256 of the function's name and arguments, sympy's version and the source
+of every module whose code defines the expressions: editing any of them, or another sympy,
+derives afresh.  A cache that cannot be written (read-only install) or read (damaged file) is
+ignored: the expressions are then derived as without it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import os
+import tempfile
+from pathlib import Path
+from types import ModuleType
+from typing import Callable
+
+import sympy as sp
+
+
+def _key(name: str, args, modules: tuple[ModuleType, ...]) -> str:
+    h = hashlib.sha256(f"{name}|{args!r}|sympy {sp.__version__}".encode())
+    for module in modules:
+        h.update(inspect.getsource(module).encode())
+    return h.hexdigest()[:20]
+
+
+def _numpy_namespace() -> dict:
+    """The globals ``sympy.lambdify(..., "numpy")`` gives its generated functions."""
+    return dict(sp.lambdify((), 0, "numpy").__globals__)
+
+
+def _load(path: Path) -> Callable | None:
+    try:
+        source = path.read_text()
+        namespace = _numpy_namespace()
+        exec(compile(source, str(path), "exec"), namespace)
+        return namespace["_lambdifygenerated"]
+    except (OSError, SyntaxError, KeyError, NameError):
+        return None
+
+
+def _store(path: Path, source: str) -> None:
+    try:
+        path.parent.mkdir(exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(source)
+        os.replace(tmp, path)           # atomic: parallel jobs never read half a file
+    except OSError:
+        pass
+
+
+def cached_lambdify(name: str, args, build: Callable[[], object], *,
+                    modules: tuple[ModuleType, ...]) -> Callable:
+    """``sympy.lambdify(args, build(), "numpy")``, from the disk cache when ``modules`` (the
+    first one's folder holds the cache) and sympy are unchanged since it was generated."""
+    path = (Path(modules[0].__file__).parent / "__pycache__"
+            / f"{name}.{_key(name, args, modules)}.lambdify.py")
+    if path.exists() and (f := _load(path)) is not None:
+        return f
+    f = sp.lambdify(args, build(), "numpy")
+    _store(path, inspect.getsource(f))
+    return f
