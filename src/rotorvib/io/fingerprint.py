@@ -43,11 +43,14 @@ def _absolute(node: ast.ImportFrom, importer: str | None, is_package: bool) -> s
     return ".".join(anchor + ([node.module] if node.module else []))
 
 
-def imported_names(source: str, importer: str | None = None, is_package: bool = False) -> set[str]:
+@lru_cache(maxsize=None)
+def imported_names(source: str, importer: str | None = None,
+                   is_package: bool = False) -> frozenset[str]:
     """Every name an import statement of ``source`` may load as a module.
 
     ``from a.b import c`` yields ``a.b`` and ``a.b.c`` (``c`` may be a submodule); names that are
-    not modules are dropped by the caller when no source file exists for them.
+    not modules are dropped by the caller when no source file exists for them.  Memoised on the
+    source text: the workflow asks for the same modules' imports once per rule.
     """
     names = set()
     for node in ast.walk(ast.parse(source)):
@@ -57,7 +60,7 @@ def imported_names(source: str, importer: str | None = None, is_package: bool = 
             base = _absolute(node, importer, is_package)
             names.add(base)
             names |= {f"{base}.{alias.name}" for alias in node.names}
-    return names
+    return frozenset(names)
 
 
 def _with_parents(name: str) -> list[str]:
@@ -98,9 +101,10 @@ def _strip_docstrings(tree: ast.AST) -> ast.AST:
     return tree
 
 
+@lru_cache(maxsize=None)
 def normalised_source(source: str) -> str:
     """The syntax tree of ``source`` without docstrings and positions, as text: equal for two
-    sources that differ only in comments, docstrings or layout."""
+    sources that differ only in comments, docstrings or layout (memoised on the text)."""
     return ast.dump(_strip_docstrings(ast.parse(source)), include_attributes=False)
 
 
