@@ -78,6 +78,8 @@ CASES = [
     ("paper_b.basin.cases", [[0.2, 0.001]], "paper_b.basin.cases.0"),
     ("paper_b.claims.beta_opt_range", [0.2, 0.1], None),
     ("paper_b.claims.ics_typical_share", [0.9, 0.1], None),
+    ("paper_b.pareto.positions", 1, None), ("paper_b.pareto.seed", -3, None),
+    ("paper_b.pareto.speed", NAN, None), ("paper_b.pareto.n_gen", 1.5, None),
     ("paper_b.claims.ics_typical_share", [0.1, 1.5], "paper_b.claims.ics_typical_share.1"),
     # paper A
     ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),

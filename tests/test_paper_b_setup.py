@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from rotorvib.models.balancer import engine
-from rotorvib.models.balancer.simulate import BalanceCriterion, metric, simulate
+from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, simulate
 from rotorvib.papers.b.optimise import balance_time_objective, ga_dataset, tune_balancer
 from rotorvib.papers.b.setup import RUN_PARAMETERS, Setup, study_problem
 from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset, grid_dataset
@@ -181,4 +181,47 @@ def test_an_ic_is_typical_when_its_share_lies_in_the_band():
     (row,) = basin_rows(basin, "printed", (0.1, 0.9))
     assert row.holds == (("", True),) and "IC1 20%, IC2 50%, IC3 90%" in row.explanation
     (row,) = basin_rows(basin, "printed", (0.25, 0.9))
+    assert row.holds == (("", False),)
+
+
+def test_the_robust_objectives_are_the_mean_time_and_the_worst_force_of_direct_runs(setup):
+    """Each design's two objectives against the same runs made one by one."""
+    from rotorvib.papers.b.pareto import design_runs, initial_positions, robust_objectives
+
+    phi = initial_positions(3, seed=1)
+    assert phi.shape == (3, 2) and np.all((phi >= 0) & (phi < 360))
+    designs = np.array([[0.2, 0.006], [1.0, 0.02]])
+    f = robust_objectives(design_runs(setup, phi, kinematics="printed", eps_bar=0.012,
+                                      speed=220.0, censored_penalty=2.0))(designs)
+    for (beta, mass), (mean_time, worst_force) in zip(designs, f):
+        runs = [run(engine.FIXED, *setup.run_inputs(mass=mass, beta=beta, eps_bar=0.012,
+                                                    phi0_deg=tuple(p), kinematics="printed",
+                                                    speed=220.0),
+                    setup.criterion, **setup.tolerances) for p in phi]
+        assert not any(r.censored for r in runs)
+        assert mean_time == pytest.approx(np.mean([r.balance_time for r in runs]), rel=1e-12)
+        assert worst_force == pytest.approx(max(r.force_max for r in runs), rel=1e-12)
+
+
+def test_the_gap_to_the_front_is_measured_at_no_more_force():
+    """A design is on the front when its gap is within the standard error of its mean."""
+    import xarray as xr
+
+    from rotorvib.papers.b.pareto import gap_to_front, pareto_rows, standard_errors
+
+    times = np.array([[4.0, 4.8, 4.4, 4.4], [2.0] * 4, [3.0, 3.1, 2.9, 3.12]])
+    ds = xr.Dataset(
+        {"front_balance_time": ("front", [3.0, 4.0, 5.0]), "front_force": ("front", [90, 80, 70]),
+         "front_beta": ("front", [0.2, 0.5, 1.0]), "front_mass": ("front", [0.006] * 3),
+         "design_balance_time": ("design", times.mean(axis=1)),
+         "design_times": (("design", "position"), times),
+         "design_force": ("design", [85.0, 200.0, 95.0]),
+         "design_beta": ("design", [0.4, 1.0, 0.2]), "design_mass": ("design", [0.01] * 3)},
+        coords={"design": [1, 2, 3]}, attrs={"kinematics": "printed"})
+    np.testing.assert_allclose(gap_to_front(ds), [0.4, 0.0, 0.03])
+    np.testing.assert_allclose(standard_errors(ds)[0], np.std([4.0, 4.8, 4.4, 4.4], ddof=1) / 2)
+    (row,) = pareto_rows(ds)                         # 0.03 s gap, standard error 0.05 s
+    assert row.holds == (("", True),) and "0.03 s slower" in row.explanation
+    ds["design_times"][2] = [3.03] * 4               # same mean, no spread: off the front
+    (row,) = pareto_rows(ds)
     assert row.holds == (("", False),)

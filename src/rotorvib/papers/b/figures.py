@@ -292,3 +292,31 @@ def kinematics_shift(paper, **studies):
            title="How much the kinematic convention moves the balance time")
     ax.legend(fontsize=8)
     return fig
+
+
+def pareto(pareto, paper):
+    """Beyond the paper: the front of mean balance time against worst peak bearing force, with
+    Table 2's rows, and where the front lies in (beta, m)."""
+    fig, (ax1, ax2) = figure(1, 2, figsize=(12.0, 4.8))
+    order = np.argsort(pareto.front_force.values)
+    t, f = pareto.front_balance_time.values[order], pareto.front_force.values[order]
+    ax1.plot(f, t, "o-", color="C0", ms=4, lw=0.8, label="NSGA-II front")
+    for i, row in enumerate(pareto.design.values):
+        label = (f"Table 2 row {int(row)}: beta = {float(pareto.design_beta[i]):g}, "
+                 f"m = {1e3 * float(pareto.design_mass[i]):g} g")
+        ax1.plot(float(pareto.design_force[i]), float(pareto.design_balance_time[i]), "s",
+                 color=f"C{i + 1}", ms=8, mfc="none", mew=1.5, label=label)
+    ax1.set(xlabel="worst peak bearing force over the sample (N)",
+            ylabel="mean balance time over the sample (s)",
+            title=f"{pareto.sizes['position']} random initial ball positions, "
+                  f"{pareto.attrs['kinematics']} kinematics")
+    ax1.legend(fontsize=7)
+    points = ax2.scatter(pareto.front_beta.values, 1e3 * pareto.front_mass.values,
+                         c=pareto.front_force.values, cmap="viridis", s=25, label="front")
+    fig.colorbar(points, ax=ax2, label="worst peak bearing force (N)")
+    for i in range(pareto.design.size):
+        ax2.plot(float(pareto.design_beta[i]), 1e3 * float(pareto.design_mass[i]), "s",
+                 color=f"C{i + 1}", ms=8, mfc="none", mew=1.5)
+    ax2.set(xlabel="ball damping ratio beta", ylabel="ball mass m (g)",
+            title="the front's designs (squares: Table 2's rows)")
+    return fig
