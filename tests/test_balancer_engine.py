@@ -3,7 +3,7 @@ kinematic conventions and across the fixed and rotating frames."""
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
+from scipy.integrate import ode, solve_ivp
 
 from rotorvib.models.balancer import dop853, engine
 from rotorvib.models.balancer.batch import integrate_batch
@@ -52,14 +52,31 @@ def test_engine_matches_scipy_dop853(case):
     assert np.max(np.abs(traj.y - ref) / scale) < 1e-7
 
 
+def hairer_reference(form, p, y0, t):
+    """Hairer and Wanner's own DOP853 (Fortran, through scipy's ``ode``) at rtol 1e-12: an
+    implementation independent of the engine's and of scipy's Python one, at a quarter of the
+    latter's cost on a 20 s run."""
+    def f(tt, y):
+        dy = np.empty_like(y)
+        engine.rhs(form, tt, y, p, dy)
+        return dy
+    solver = ode(f).set_integrator("dop853", rtol=1e-12, atol=1e-15, nsteps=10**8)
+    solver.set_initial_value(y0, t[0])
+    out = [y0]
+    for tt in t[1:]:
+        out.append(solver.integrate(tt))
+        assert solver.successful()
+    return np.array(out)
+
+
 def test_full_runup_balance_time_matches_scipy():
     """Paper B's run-up, 20 s: balance time from the engine's default tolerance and from
-    scipy's DOP853 at rtol 1e-12 agree to 1e-3 s."""
+    Hairer's DOP853 at rtol 1e-12 agree to 1e-3 s."""
     b, prof = paper_b(), SpeedProfile(200.0, "runup", 0.5, "printed")
     p, y0 = fixed_parameters(b, prof), ic((40, 45))
     res = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, 20.0, 1e-3))
     t = np.arange(20001) * 1e-3
-    ref = scipy_reference(engine.FIXED, p, y0, t)
+    ref = hairer_reference(engine.FIXED, p, y0, t)
     r = np.hypot(ref[:, 0], ref[:, 1])
     last_above = np.flatnonzero(r >= R_THR)[-1]
     t_ref = t[last_above] + (r[last_above] - R_THR) / (r[last_above] - r[last_above + 1]) * 1e-3
