@@ -48,3 +48,20 @@ def test_no_design_of_the_front_light_enough_is_an_error():
     front = ParetoFront(x=np.zeros((1, 8)), f=np.array([[3.0, 0.5]]), n_eval=1)
     with pytest.raises(ValueError, match="no design of the front adds at most 0.4 kg"):
         pick_at_mass(front, 0.4)
+
+
+def test_the_objectives_band_scales_with_the_tolerance(rotor, table2):
+    """Paper C's uncertainty study: the nominal value is eq. (20) at Table 2, and for small
+    tolerances the band's width grows in proportion to the tolerance (first order)."""
+    from rotorvib.models.absorber.frequency_response import theta_eq20
+    from rotorvib.papers.c.uncertainty import uncertainty_dataset
+
+    widths = []
+    for tolerance in (0.002, 0.004):
+        ds = uncertainty_dataset(rotor, table2, tolerance=tolerance, n_base=64,
+                                 convergence=[64], resamples=20, seed=1)
+        q = list(ds.quantity_name.values).index("theta")
+        assert float(ds.nominal[q]) == pytest.approx(
+            abs(theta_eq20(rotor, dual_to_vector(table2), rotor.omega_n)), rel=1e-12)
+        widths.append(ds.band.values[q, -1] - ds.band.values[q, 0])
+    assert widths[1] / widths[0] == pytest.approx(2.0, rel=0.02)

@@ -47,3 +47,14 @@ def integer(name: str, value, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < minimum:
         raise ValueError(f"{name} = {value!r}: must be an integer >= {minimum}")
     return int(value)
+
+
+def sobol_design_problem(n_base, convergence) -> str | None:
+    """Why a Saltelli design of ``n_base`` base points, shown at the sizes ``convergence``,
+    cannot be run (None if it can): every size a power of 2, none above ``n_base``."""
+    for size in [n_base, *convergence]:
+        if size < 2 or size & (size - 1):
+            return f"{size} base points: must be a power of 2 (a balanced Sobol sequence)"
+    if max(convergence) > n_base:
+        return f"convergence {list(convergence)}: every size must be at most n_base = {n_base}"
+    return None

@@ -1,4 +1,5 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
+from rotorvib.checks import sobol_design_problem
 from rotorvib.papers.b.setup import existence_problems, study_problem
 
 B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
@@ -11,6 +12,10 @@ B_RUNS = {
 for _name, _study in B["balance_studies"].items():
     if problem := study_problem(_study):
         raise WorkflowError(f"config key 'paper_b.balance_studies.{_name}': {problem}")
+if problem := sobol_design_problem(
+    B["uncertainty"]["n_base"], B["uncertainty"]["convergence"]
+):
+    raise WorkflowError(f"config key 'paper_b.uncertainty': {problem}")
 if _problems := existence_problems(B):
     raise WorkflowError("invalid configuration:\n  " + "\n  ".join(_problems))
 
@@ -127,6 +132,15 @@ FIGURES["b"] = {
         "balanced by each time, and where the paper's three initial conditions fall in it.",
         items=["Basin"],
     ),
+    "uncertainty": figure(
+        "uncertainty",
+        {"unc": "uncertainty"},
+        "Beyond the paper: how sure Table 2's optimum row is. Sobol indices (first-order and "
+        "total, 95 % bootstrap intervals) of its peak bearing force, force decay time, balance "
+        "time and whether it balances, over the uncertain inputs (ranges in the config), their "
+        "convergence with the sample, and each quantity's distribution with the printed value.",
+        items=["Uncertainty"],
+    ),
     "pareto": figure(
         "pareto",
         {"pareto": "pareto"},
@@ -158,6 +172,7 @@ RESULTS["b"] = results_of(
         "forces",
         "basin",
         "pareto",
+        "uncertainty",
         "discrepancies",
     ]
     + [f"balance_{name}" for name in B["balance_studies"]],
@@ -308,6 +323,28 @@ rule b_forces:
         "../scripts/b_forces.py"
 
 
+rule b_uncertainty:
+    output:
+        dataset("b", "uncertainty"),
+    log:
+        logs("b_uncertainty"),
+    benchmark:
+        benchmarks("b_uncertainty")
+    threads: 2
+    resources:
+        runtime=30,
+    params:
+        setup=B_SETUP,
+        kinematics=B["kinematics"][0],
+        uncertainty=B["uncertainty"],
+        table2=B["table2"],
+        ics=B["initial_conditions"],
+    message:
+        "Paper B (beyond the paper): Sobol indices and bands of Table 2's optimum row"
+    script:
+        "../scripts/b_uncertainty.py"
+
+
 rule b_pareto:
     output:
         dataset("b", "pareto"),
@@ -407,6 +444,7 @@ rule b_reproduced_values:
         forces=rules.b_forces.output[0],
         basin=rules.b_basin.output[0],
         pareto=rules.b_pareto.output[0],
+        uncertainty=rules.b_uncertainty.output[0],
         paper_values=PAPER_VALUES,
     output:
         "results/paper_b/reproduced.csv",

@@ -6,14 +6,16 @@ from rotorvib.comparison import paper_values_of, write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.claims import reproduce
 from rotorvib.papers.b.pareto import pareto_rows
+from rotorvib.papers.b.uncertainty import uncertainty_rows
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
         if name != "paper_values"}
-pareto = data.pop("pareto")
+pareto, uncertainty = data.pop("pareto"), data.pop("uncertainty")
+paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
-                 paper_values=paper_values_of(snakemake.input.paper_values, "B"))
-rows += pareto_rows(pareto)
+                 paper_values=paper)
+rows += pareto_rows(pareto) + uncertainty_rows(uncertainty, paper)
 write_reproduced(rows, snakemake.output[0])

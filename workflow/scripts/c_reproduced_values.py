@@ -7,13 +7,16 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.models.absorber.parameters import Rotor
 from rotorvib.papers.c.broadband import broadband_rows
 from rotorvib.papers.c.claims import reproduce
+from rotorvib.papers.c.uncertainty import uncertainty_rows
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 rotor = Rotor(**p.rotor)
 data = {name: read_dataset(snakemake.input[name], expected_config) for name in ("ga", "fr", "mr", "distance", "tr")}
+paper = paper_values_of(snakemake.input.paper_values, "C")
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
-                 paper_values=paper_values_of(snakemake.input.paper_values, "C"))
+                 paper_values=paper)
 rows += broadband_rows(read_dataset(snakemake.input.bb, expected_config))
+rows += uncertainty_rows(read_dataset(snakemake.input.uncertainty, expected_config), paper)
 write_reproduced(rows, snakemake.output[0])

@@ -89,3 +89,46 @@ def save(fig, path: str | Path) -> Path:
         fig.savefig(path, metadata={"Software": None})
     plt.close(fig)
     return path
+
+
+def sensitivity(ds, printed: dict[str, float], title: str):
+    """One row per quantity of a sensitivity study (rotorvib.methods.sensitivity): first-order
+    and total Sobol indices with their 95 % intervals at the largest sample, the total indices
+    against the sample size (convergence), and the quantity's distribution over the input
+    ranges with its 5-95 % band, its nominal value and the paper's (``printed``, by quantity)."""
+    names = [str(n) for n in ds.input_name.values]
+    quantities = [str(q) for q in ds.quantity_name.values]
+    fig, axes = figure(len(quantities), 3, figsize=(15.0, 2.9 * len(quantities)), squeeze=False)
+    position = range(len(names))
+    for q, quantity in enumerate(quantities):
+        units = str(ds.quantity_units.values[q])
+        ax = axes[q, 0]
+        for shift, key, color in ((-0.2, "S1", "C0"), (0.2, "ST", "C1")):
+            ax.bar([i + shift for i in position], ds[key].values[q, -1], width=0.4, color=color,
+                   yerr=ds[f"{key}_conf"].values[q, -1], capsize=2,
+                   label={"S1": "first-order", "ST": "total"}[key])
+        ax.set_xticks(list(position), names, rotation=30, fontsize=8)
+        ax.set(ylabel=f"Sobol index of {quantity}", ylim=(-0.1, 1.1),
+               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} runs)")
+        ax.legend(fontsize=7)
+        ax = axes[q, 1]
+        for i, name in enumerate(names):
+            ax.errorbar(ds.n_base.values, ds.ST.values[q, :, i], ds.ST_conf.values[q, :, i],
+                        marker="o", ms=3, capsize=2, lw=1, label=name)
+        ax.set_xscale("log", base=2)
+        ax.set(xlabel="base points of the sample", ylabel="total Sobol index",
+               title="convergence")
+        ax.legend(fontsize=6, ncol=2)
+        ax = axes[q, 2]
+        ax.hist(ds.y.values[q], bins=40, color="0.7")
+        lo, hi = ds.band.values[q, 0], ds.band.values[q, -1]
+        ax.axvspan(lo, hi, color="C0", alpha=0.15, label=f"{ds.percentile.values[0]:g}-"
+                   f"{ds.percentile.values[-1]:g} % band")
+        ax.axvline(float(ds.nominal[q]), color="k", lw=1.2, label="reproduction (nominal)")
+        if quantity in printed:
+            paper_vline(ax, printed[quantity], f"{printed[quantity]:g} {units}")
+        ax.set(xlabel=f"{quantity} ({units})", ylabel="input points")
+        ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 4))
+        ax.legend(fontsize=7)
+    fig.suptitle(title)
+    return fig

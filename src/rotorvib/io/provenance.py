@@ -9,7 +9,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 #: Packages whose versions are recorded in every dataset.
-RECORDED_PACKAGES = ("rotorvib", "numpy", "scipy", "numba", "xarray", "netCDF4", "pymoo",
+RECORDED_PACKAGES = ("rotorvib", "numpy", "scipy", "numba", "xarray", "netCDF4", "pymoo", "SALib",
                      "sympy", "matplotlib", "snakemake")
 
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.claims import faster_share
-from rotorvib.io.plotting import PAPER_STYLE, figure, paper_hline, paper_vline
+from rotorvib.io.plotting import PAPER_STYLE, figure, paper_hline, paper_vline, sensitivity
 
 STYLES = {0: "-", 1: "--"}
 SYMBOLS = {"eps_bar": "eps/R"}
@@ -320,3 +320,11 @@ def pareto(pareto, paper):
     ax2.set(xlabel="ball damping ratio beta", ylabel="ball mass m (g)",
             title="the front's designs (squares: Table 2's rows)")
     return fig
+
+
+def uncertainty(unc, paper):
+    """Beyond the paper: Sobol indices and bands of Table 2's optimum row."""
+    printed = {"force_max": paper["table2_fmax_3"], "force_decay_time": paper["table2_decay_3"]}
+    return sensitivity(unc, printed, "Table 2, last row (beta = "
+                       f"{unc.attrs['design_beta']:g}, m = {1e3 * unc.attrs['design_mass']:g} g)"
+                       ": times capped at t_end; balanced = 1 for a run that balances")

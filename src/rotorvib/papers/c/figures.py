@@ -10,7 +10,7 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
 from rotorvib.io.coords import labels, pick
-from rotorvib.io.plotting import figure, paper_hline, paper_point, paper_vline
+from rotorvib.io.plotting import figure, paper_hline, paper_point, paper_vline, sensitivity
 from rotorvib.papers.c.claims import undamped_peaks
 
 NONLINEAR = 1  # index of "nonlinear eqs. (8)-(10)" on the model axis of the time responses
@@ -206,3 +206,9 @@ def broadband(bb, paper):
            title="Pareto front within the bounds of section 4")
     ax.legend(fontsize=7)
     return fig
+
+
+def uncertainty(unc, paper):
+    """Beyond the paper: Sobol indices and band of Table 2's objective |Theta(omega_n)|."""
+    return sensitivity(unc, {"theta": paper["theta_table2"]},
+                       "Table 2's objective with every value within its tolerance")

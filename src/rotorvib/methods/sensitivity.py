@@ -1,0 +1,123 @@
+"""Global sensitivity analysis: Sobol indices with bootstrap confidence intervals (SALib).
+
+For a model ``Y = f(X)`` with independent inputs ``X_j`` uniform on their ranges, the
+first-order index ``S1_j = V[E(Y | X_j)] / V(Y)`` is the share of the variance of ``Y`` that
+``X_j`` explains alone, and the total index ``ST_j = E[V(Y | X_~j)] / V(Y)`` its share with all
+its interactions.  Saltelli's scheme estimates both from ``N (D + 2)`` evaluations on a
+scrambled Sobol sequence (Jansen's estimator for ``ST``); the confidence intervals come from
+bootstrap resampling of the ``N`` base points.
+
+The evaluations are grouped by base point, so the first ``n (D + 2)`` of them are the design for
+``n`` base points: :func:`sobol_indices` gives the indices at several ``n`` from one set of
+runs, which shows whether they have converged.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from SALib.analyze import sobol as sobol_analyze
+from SALib.sample import sobol as sobol_sample
+
+from rotorvib.checks import finite_array, integer, sobol_design_problem
+
+
+def problem(ranges: dict[str, tuple[float, float]]) -> dict:
+    """SALib's problem for inputs ``name -> (low, high)``, each uniform; ``ValueError`` naming
+    an input whose range is not finite and increasing."""
+    for name, (lo, hi) in ranges.items():
+        if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+            raise ValueError(f"input {name!r}: range [{lo}, {hi}] must be finite and increasing")
+    return {"num_vars": len(ranges), "names": list(ranges),
+            "bounds": [[float(lo), float(hi)] for lo, hi in ranges.values()]}
+
+
+def sample(spec: dict, n_base: int, seed: int) -> np.ndarray:
+    """The ``n_base (D + 2)`` input points of Saltelli's scheme (``n_base``: a power of 2)."""
+    if problem_text := sobol_design_problem(integer("n_base", n_base, 2), [n_base]):
+        raise ValueError(f"n_base: {problem_text}")
+    return sobol_sample.sample(spec, n_base, calc_second_order=False, seed=seed)
+
+
+def sobol_indices(spec: dict, y, n_bases, *, resamples: int, seed: int,
+                  conf_level: float = 0.95) -> dict[str, np.ndarray]:
+    """``S1``, ``S1_conf``, ``ST``, ``ST_conf`` (half-widths of the ``conf_level`` intervals),
+    each of shape ``(len(n_bases), D)``, from the first ``n (D + 2)`` outputs ``y`` for each
+    ``n`` of ``n_bases``.  Non-finite outputs raise ``ValueError``."""
+    d = spec["num_vars"]
+    y = finite_array("y", y, shape=(None,))
+    out = {key: np.empty((len(n_bases), d)) for key in ("S1", "S1_conf", "ST", "ST_conf")}
+    for i, n in enumerate(n_bases):
+        if n * (d + 2) > len(y):
+            raise ValueError(f"n_base = {n} needs {n * (d + 2)} outputs, {len(y)} given")
+        result = sobol_analyze.analyze(spec, y[:n * (d + 2)], calc_second_order=False,
+                                       num_resamples=resamples, conf_level=conf_level,
+                                       seed=seed)
+        for key in out:
+            out[key][i] = result[key]
+    return out
+
+
+def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n_bases,
+                  resamples: int, seed: int, percentiles=(5.0, 50.0, 95.0)) -> xr.Dataset:
+    """A sensitivity study as a dataset: the inputs ``x`` and ``outputs`` (quantity -> values
+    at ``x``), the indices of every quantity at each of ``n_bases``, the ``percentiles`` of
+    each quantity over all evaluations (its uncertainty band) and its ``nominal`` value."""
+    names = list(outputs)
+    indices = {q: sobol_indices(spec, outputs[q], n_bases, resamples=resamples, seed=seed)
+               for q in names}
+    dims = ("quantity", "n_base", "input")
+    data = {key: (dims, np.stack([indices[q][key] for q in names]),
+                  {"long_name": text, "units": "1"})
+            for key, text in (("S1", "first-order Sobol index"),
+                              ("S1_conf", "half-width of the 95 % bootstrap interval of S1"),
+                              ("ST", "total Sobol index"),
+                              ("ST_conf", "half-width of the 95 % bootstrap interval of ST"))}
+    y = np.stack([np.asarray(outputs[q], float) for q in names])
+    data["y"] = (("quantity", "sample"), y, {"long_name": "model output at each input point "
+                                                          "(units by quantity)", "units": "1"})
+    data["band"] = (("quantity", "percentile"), np.percentile(y, percentiles, axis=1).T,
+                    {"long_name": "percentiles of the output over the input ranges (units by "
+                                  "quantity)", "units": "1"})
+    data["nominal"] = ("quantity", [float(nominal[q]) for q in names],
+                       {"long_name": "output at the nominal inputs (units by quantity)",
+                        "units": "1"})
+    data["x"] = (("sample", "input"), np.asarray(x, float),
+                 {"long_name": "input point of Saltelli's scheme (units by input)", "units": "1"})
+    bounds = np.asarray(spec["bounds"], float)
+    return xr.Dataset(
+        data,
+        coords={"input_name": ("input", np.array(spec["names"], dtype=object),
+                               {"long_name": "uncertain input"}),
+                "input_low": ("input", bounds[:, 0], {"long_name": "lower end of the input's "
+                                                                   "range", "units": "1"}),
+                "input_high": ("input", bounds[:, 1], {"long_name": "upper end of the input's "
+                                                                    "range", "units": "1"}),
+                "quantity_name": ("quantity", np.array(names, dtype=object),
+                                  {"long_name": "reproduced quantity"}),
+                "quantity_units": ("quantity", np.array([units[q] for q in names],
+                                                        dtype=object),
+                                   {"long_name": "units of the quantity"}),
+                "n_base": ("n_base", np.asarray(n_bases, np.int32),
+                           {"long_name": "base points of Saltelli's scheme", "units": "1"}),
+                "percentile": ("percentile", np.asarray(percentiles, float),
+                               {"long_name": "percentile of the output", "units": "1"})},
+        attrs={"sobol_resamples": resamples, "sobol_seed": seed},
+    )
+
+
+def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[bool, str]:
+    """Whether ``value`` lies within the outer percentiles of ``quantity``'s band, and a
+    sentence with the band, the nominal value and the input of largest total index (with its
+    interval) at the largest sample."""
+    q = list(ds.quantity_name.values).index(quantity)
+    band, units = ds.band.values[q], str(ds.quantity_units.values[q])
+    lo, hi = band[0], band[-1]
+    st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
+    top = int(np.argmax(st))
+    p = ds.percentile.values
+    return bool(lo <= value <= hi), (
+        f"{value:.4g} {units} against the {p[0]:g}-{p[-1]:g} % band {lo:.4g}-{hi:.4g} {units} "
+        f"(median {band[len(band) // 2]:.4g}, nominal {float(ds.nominal[q]):.4g}) over the "
+        f"input ranges; largest total Sobol index: {ds.input_name.values[top]} "
+        f"({st[top]:.2f} +/- {conf[top]:.2f}, {int(ds.n_base[-1])} base points)")

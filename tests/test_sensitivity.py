@@ -1,0 +1,71 @@
+"""Sobol indices recovered on the Ishigami function, whose indices are known in closed form
+(Ishigami & Homma 1990; Sobol' & Levitan 1999), within their bootstrap intervals."""
+
+import numpy as np
+import pytest
+
+from rotorvib.methods.sensitivity import problem, sample, sobol_indices
+
+A, B = 7.0, 0.1
+
+
+def ishigami(x):
+    return np.sin(x[:, 0]) + A * np.sin(x[:, 1]) ** 2 + B * x[:, 2] ** 4 * np.sin(x[:, 0])
+
+
+def exact_indices():
+    """V = a^2/8 + b pi^4/5 + b^2 pi^8/18 + 1/2; V1 = (1 + b pi^4/5)^2 / 2, V2 = a^2/8,
+    V13 = b^2 pi^8 (1/18 - 1/50); V3 = 0."""
+    v = A**2 / 8 + B * np.pi**4 / 5 + B**2 * np.pi**8 / 18 + 0.5
+    v1, v2 = (1 + B * np.pi**4 / 5) ** 2 / 2, A**2 / 8
+    v13 = B**2 * np.pi**8 * (1 / 18 - 1 / 50)
+    return np.array([v1, v2, 0.0]) / v, np.array([v1 + v13, v2, v13]) / v
+
+
+def test_ishigami_indices_lie_within_their_intervals_and_tighten():
+    spec = problem({name: (-np.pi, np.pi) for name in ("x1", "x2", "x3")})
+    x = sample(spec, 2048, seed=3)
+    assert x.shape == (2048 * 5, 3)
+    s = sobol_indices(spec, ishigami(x), [256, 2048], resamples=200, seed=3)
+    s1, st = exact_indices()
+    for key, exact in (("S1", s1), ("ST", st)):
+        error = np.abs(s[key][-1] - exact)
+        assert np.all(error <= s[f"{key}_conf"][-1]), (key, s[key][-1], exact)
+        assert np.all(s[f"{key}_conf"][-1] < s[f"{key}_conf"][0])      # more points, tighter
+
+
+def test_bad_inputs_are_refused():
+    with pytest.raises(ValueError, match="input 'x': range"):
+        problem({"x": (1.0, 1.0)})
+    spec = problem({"x": (0.0, 1.0), "y": (0.0, 1.0)})
+    with pytest.raises(ValueError, match="power of 2"):
+        sample(spec, 100, seed=0)
+    with pytest.raises(ValueError, match="needs 32 outputs"):
+        sobol_indices(spec, np.zeros(16), [8], resamples=10, seed=0)
+    with pytest.raises(ValueError, match="y"):
+        sobol_indices(spec, np.full(32, np.nan), [8], resamples=10, seed=0)
+
+
+def test_a_study_dataset_states_its_band_and_dominant_input():
+    """y = 10 x1 + x2 on the unit square: x1 dominates (ST = 100/101), the band of y spans
+    [0.5, 10.45] at 5-95 %, and a value outside it is reported outside."""
+    from rotorvib.methods.sensitivity import band_statement, study_dataset
+
+    spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
+    x = sample(spec, 512, seed=1)
+    y = 10 * x[:, 0] + x[:, 1]
+    ds = study_dataset(spec, x, {"y": y}, {"y": 5.5}, {"y": "m"}, n_bases=[64, 512],
+                       resamples=100, seed=1)
+    assert ds.ST.values[0, -1, 0] == pytest.approx(100 / 101, abs=ds.ST_conf.values[0, -1, 0])
+    np.testing.assert_allclose(ds.band.values[0], np.percentile(y, [5, 50, 95]))
+    inside, text = band_statement(ds, "y", 5.0)
+    assert inside and "largest total Sobol index: x1" in text and "nominal 5.5" in text
+    assert not band_statement(ds, "y", 12.0)[0]
+
+
+def test_a_design_that_cannot_be_run_is_named():
+    from rotorvib.checks import sobol_design_problem
+
+    assert sobol_design_problem(128, [32, 64, 128]) is None
+    assert "96 base points: must be a power of 2" in sobol_design_problem(96, [32])
+    assert "at most n_base = 64" in sobol_design_problem(64, [32, 128])
