@@ -230,11 +230,12 @@ def test_the_gap_to_the_front_is_measured_at_no_more_force():
 def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
     """A lighter ball than the existence bound m/M >= eps_bar/2 never balances: its times are
     t_end and it is flagged; a nominal run gives the engine's own numbers."""
-    from rotorvib.papers.b.uncertainty import run_table2_case
+    from rotorvib.papers.b.uncertainty import run_case
 
-    x = [[0.1, 0.01, 1e-3, 40.0, 45.0, 0.012, 0.0, 0.0],
-         [0.1, 0.01, 1e-3, 40.0, 45.0, 0.012, -0.2, 0.0]]
-    out = run_table2_case(setup, x, beta=0.2, mass=0.006, speed=220.0, kinematics="printed")
+    x = [[0.1, 0.01, 1e-3, 40.0, 45.0, 0.0, 0.0, 0.0],
+         [0.1, 0.01, 1e-3, 40.0, 45.0, 0.0, -0.2, 0.0]]
+    out = run_case(setup, x, beta=0.2, mass=0.006, eps_bar=0.012, speed=220.0,
+                   kinematics="printed")
     direct = run(engine.FIXED, *setup.run_inputs(mass=0.006, beta=0.2, eps_bar=0.012,
                                                  phi0_deg=(40.0, 45.0), kinematics="printed",
                                                  speed=220.0), setup.criterion,

@@ -3,6 +3,28 @@ from rotorvib.checks import sobol_design_problem
 from rotorvib.papers.b.setup import existence_problems, study_problem
 
 B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
+# The cases of the uncertainty study (beyond the paper), from their sections of the config.
+_T2, _F7 = B["table2"], B["time_responses"]["fig7"]
+B_UNCERTAIN = {
+    "table2": {
+        "name": "table2",
+        "title": "Table 2's optimum row",
+        "beta": _T2["cases"][-1][0],
+        "mass": _T2["cases"][-1][1],
+        "eps_bar": _T2["eps_bar"],
+        "phi0_deg": B["initial_conditions"][_T2["ic"]],
+        "speed": _T2["speed"],
+    },
+    "fig7": {
+        "name": "fig7",
+        "title": "Fig 7",
+        "beta": _F7["beta"],
+        "mass": _F7["m_bar"] * B["machine"]["M"],
+        "eps_bar": _F7["eps_bar"],
+        "phi0_deg": _F7["phi0"],
+        "speed": None,
+    },
+}
 B_RUNS = {
     "setup": B_SETUP,
     "kinematics": B["kinematics"],
@@ -132,15 +154,19 @@ FIGURES["b"] = {
         "balanced by each time, and where the paper's three initial conditions fall in it.",
         items=["Basin"],
     ),
-    "uncertainty": figure(
-        "uncertainty",
-        {"unc": "uncertainty"},
-        "Beyond the paper: how sure Table 2's optimum row is. Sobol indices (first-order and "
-        "total, 95 % bootstrap intervals) of its peak bearing force, force decay time, balance "
-        "time and whether it balances, over the uncertain inputs (ranges in the config), their "
-        "convergence with the sample, and each quantity's distribution with the printed value.",
-        items=["Uncertainty"],
-    ),
+    **{
+        f"uncertainty_{case}": figure(
+            "uncertainty",
+            {"unc": f"uncertainty_{case}"},
+            f"Beyond the paper: how sure {spec['title']} is. Sobol indices (first-order and "
+            "total, 95 % bootstrap intervals) of its peak bearing force, force decay time, "
+            "balance times and whether it balances, over the uncertain inputs (ranges in the "
+            "config), their convergence with the sample, and each quantity's distribution "
+            "with the printed value.",
+            items=["Uncertainty"],
+        )
+        for case, spec in B_UNCERTAIN.items()
+    },
     "pareto": figure(
         "pareto",
         {"pareto": "pareto"},
@@ -172,9 +198,9 @@ RESULTS["b"] = results_of(
         "forces",
         "basin",
         "pareto",
-        "uncertainty",
         "discrepancies",
     ]
+    + [f"uncertainty_{case}" for case in B_UNCERTAIN]
     + [f"balance_{name}" for name in B["balance_studies"]],
     ["derivation_checks", "table1", "table2"],
 ) + [table("b", "kinematics", "md")]
@@ -325,11 +351,13 @@ rule b_forces:
 
 rule b_uncertainty:
     output:
-        dataset("b", "uncertainty"),
+        dataset("b", "uncertainty_{case}"),
     log:
-        logs("b_uncertainty"),
+        logs("b_uncertainty_{case}"),
     benchmark:
-        benchmarks("b_uncertainty")
+        benchmarks("b_uncertainty_{case}")
+    wildcard_constraints:
+        case="|".join(B_UNCERTAIN),
     threads: 2
     resources:
         runtime=30,
@@ -337,10 +365,9 @@ rule b_uncertainty:
         setup=B_SETUP,
         kinematics=B["kinematics"][0],
         uncertainty=B["uncertainty"],
-        table2=B["table2"],
-        ics=B["initial_conditions"],
+        case=lambda wc: B_UNCERTAIN[wc.case],
     message:
-        "Paper B (beyond the paper): Sobol indices and bands of Table 2's optimum row"
+        "Paper B (beyond the paper): Sobol indices and bands of the case {wildcards.case}"
     script:
         "../scripts/b_uncertainty.py"
 
@@ -434,6 +461,10 @@ rule b_tables:
 
 rule b_reproduced_values:
     input:
+        **{
+            f"uncertainty_{case}": dataset("b", f"uncertainty_{case}")
+            for case in B_UNCERTAIN
+        },
         st2=dataset("b", "stability_fig2"),
         st3=dataset("b", "stability_fig3"),
         tr=rules.b_time_responses.output[0],
@@ -444,7 +475,6 @@ rule b_reproduced_values:
         forces=rules.b_forces.output[0],
         basin=rules.b_basin.output[0],
         pareto=rules.b_pareto.output[0],
-        uncertainty=rules.b_uncertainty.output[0],
         paper_values=PAPER_VALUES,
     output:
         "results/paper_b/reproduced.csv",

@@ -13,7 +13,9 @@ expected_config = snakemake.params.inputs_config_sha256  # each input's producer
 p = snakemake.params
 data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
         if name != "paper_values"}
-pareto, uncertainty = data.pop("pareto"), data.pop("uncertainty")
+pareto = data.pop("pareto")
+uncertainty = {name.removeprefix("uncertainty_"): data.pop(name)
+               for name in [n for n in data if n.startswith("uncertainty_")]}
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  paper_values=paper)

@@ -1,13 +1,13 @@
-"""Beyond paper B: how sure are Table 2's numbers for the paper's optimum?
+"""Beyond paper B: how sure are its headline numbers?
 
-The peak bearing force, its decay time and the balance time of Table 2's last row (beta = 0.2,
-m = 6 g, 220 rad/s, eps_bar = 0.012) depend on inputs the paper leaves uncertain or that vary
-in practice: the inferred race radius R, the support damping zeta, the initial amplitude r(0),
-the balls' initial positions (uniform over the circle), eps_bar, and manufacturing tolerances
-on the ball mass and the support stiffness (relative offsets).  Each is uniform on its range
-(config, with reasons); Sobol indices say which input drives each quantity, and the 5-95 %
-band of each quantity over the ranges says whether a printed value lies within input
-uncertainty of its reproduction.
+The peak bearing force, its decay time and the balance time of a run of paper B depend on
+inputs the paper leaves uncertain or that vary in practice: the inferred race radius R, the
+support damping zeta, the initial amplitude r(0), the balls' initial positions (uniform over
+the circle), and relative offsets (tolerances) of the eccentricity, the ball mass and the
+support stiffness.  Each is uniform on its range (config, with reasons).  For each case (a
+design and operating point of the paper: Table 2's optimum row, Fig 7), Sobol indices say which
+input drives each quantity, and the 5-95 % band of each quantity over the ranges says whether a
+printed value lies within input uncertainty of its reproduction.
 """
 
 from __future__ import annotations
@@ -23,66 +23,78 @@ from rotorvib.methods.sensitivity import band_statement, problem, sample, study_
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 
-INPUTS = ("R", "zeta", "r0", "phi1", "phi2", "eps_bar", "mass_tolerance", "k_tolerance")
-#: quantity -> units; the two times are capped at t_end, ``balanced`` is 1 for a run that balances
-QUANTITIES = {"force_max": "N", "force_decay_time": "s", "balance_time": "s", "balanced": "1"}
+INPUTS = ("R", "zeta", "r0", "phi1", "phi2", "eps_tolerance", "mass_tolerance", "k_tolerance")
+#: quantity -> units; the times are capped at t_end, ``balanced`` is 1 for a run that balances
+QUANTITIES = {"force_max": "N", "force_decay_time": "s", "balance_time": "s",
+              "envelope_time": "s", "balanced": "1"}
 _claim = partial(Reproduced.claim, "B")
 
 
-def run_table2_case(setup: Setup, x, *, beta: float, mass: float, speed: float,
-                    kinematics: str) -> dict[str, np.ndarray]:
-    """The quantities of :data:`QUANTITIES` at each input point ``x[:, INPUTS]``, all runs in
-    one batch.  A run that does not balance (or whose force does not decay) by ``t_end`` has
-    no time: its time is capped at ``t_end`` (the quantities are ``min(time, t_end)``, exact
-    below the cap) and ``balanced`` says which runs balanced."""
+def run_case(setup: Setup, x, *, beta: float, mass: float, eps_bar: float, speed: float | None,
+             kinematics: str) -> dict[str, np.ndarray]:
+    """The quantities of :data:`QUANTITIES` at each input point ``x[:, INPUTS]`` for the case
+    ``(beta, mass, eps_bar, speed)`` (``speed`` None: the configured run-up), all runs in one
+    batch.  A run that does not balance (or whose force does not decay) by ``t_end`` has no
+    time: its time is capped at ``t_end`` (the quantities are ``min(time, t_end)``, exact below
+    the cap) and ``balanced`` says which runs balanced."""
     inputs = []
-    for R, zeta, r0, phi1, phi2, eps_bar, dm, dk in np.asarray(x, float):
+    for R, zeta, r0, phi1, phi2, de, dm, dk in np.asarray(x, float):
         s = replace(setup, k=setup.k * (1 + dk), r0=r0)
-        inputs.append(s.run_inputs(mass=mass * (1 + dm), eps_bar=eps_bar, beta=beta,
+        inputs.append(s.run_inputs(mass=mass * (1 + dm), eps_bar=eps_bar * (1 + de), beta=beta,
                                    phi0_deg=(phi1, phi2), kinematics=kinematics, speed=speed,
                                    R=R, zeta=zeta))
     metrics = setup.runs(inputs, progress=False)
     t_end = setup.criterion.t_end
+
+    def capped(time, flag):
+        return np.where(metric(metrics, flag) == 1, metric(metrics, time), t_end)
+
     return {"force_max": metric(metrics, "force_max"),
-            "force_decay_time": np.where(metric(metrics, "force_decayed") == 1,
-                                         metric(metrics, "force_decay_time"), t_end),
-            "balance_time": np.where(metric(metrics, "balanced") == 1,
-                                     metric(metrics, "balance_time"), t_end),
+            "force_decay_time": capped("force_decay_time", "force_decayed"),
+            "balance_time": capped("balance_time", "balanced"),
+            "envelope_time": capped("envelope_time", "envelope_balanced"),
             "balanced": (metric(metrics, "balanced") == 1).astype(float)}
 
 
-def uncertainty_dataset(setup: Setup, *, ranges: dict, design, eps_bar: float, phi0_deg,
-                        speed: float, kinematics: str, n_base: int, convergence, resamples: int,
-                        seed: int) -> xr.Dataset:
-    """Sobol indices and bands of Table 2's last-row quantities over ``ranges`` (input ->
-    ``[low, high]``, keys :data:`INPUTS`) for ``design = (beta, m)``; the nominal run is
-    Table 2's: R, zeta and r(0) of ``setup``, ``eps_bar``, balls at ``phi0_deg``, no
-    tolerances."""
+def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, kinematics: str,
+                        n_base: int, convergence, resamples: int, seed: int) -> xr.Dataset:
+    """Sobol indices and bands of the quantities of ``case`` (``name``, ``title``, ``beta``,
+    ``mass``, ``eps_bar``, ``phi0_deg``, ``speed`` or None) over ``ranges`` (input -> ``[low, high]``,
+    keys :data:`INPUTS`); the nominal run is the case as the paper runs it: R, zeta and r(0)
+    of ``setup``, balls at ``phi0_deg``, no tolerances."""
     spec = problem({name: tuple(ranges[name]) for name in INPUTS})
     x = sample(spec, n_base, seed)
-    beta, mass = design
-    run = partial(run_table2_case, setup, beta=beta, mass=mass, speed=speed,
-                  kinematics=kinematics)
-    nominal = {q: v[0] for q, v in run([[setup.R, setup.zeta, setup.r0, *phi0_deg, eps_bar,
-                                         0.0, 0.0]]).items()}
+    run = partial(run_case, setup, beta=case["beta"], mass=case["mass"],
+                  eps_bar=case["eps_bar"], speed=case["speed"], kinematics=kinematics)
+    nominal = {q: v[0] for q, v in run([[setup.R, setup.zeta, setup.r0, *case["phi0_deg"],
+                                         0.0, 0.0, 0.0]]).items()}
     ds = study_dataset(spec, x, run(x), nominal, QUANTITIES, n_bases=convergence,
                        resamples=resamples, seed=seed)
+    speed = "the run-up" if case["speed"] is None else f"{case['speed']:g} rad/s"
     attrs = dataset_attrs(
-        "uncertainty of Table 2's optimum row",
+        f"uncertainty of {case['title']}",
         f"Beyond the paper: Sobol indices ({n_base} base points) and 5-95 % bands of the peak "
-        f"bearing force, its decay time and the balance time at beta = {beta:g}, m = "
-        f"{1e3 * mass:g} g, {speed:g} rad/s over the uncertain inputs", "Table 2")
-    return ds.assign_attrs(design_beta=beta, design_mass=mass, nominal_eps_bar=eps_bar,
+        f"bearing force, its decay time and the balance times at beta = {case['beta']:g}, m = "
+        f"{1e3 * case['mass']:g} g, eps_bar = {case['eps_bar']:g}, {speed} over the uncertain "
+        "inputs", case["title"])
+    return ds.assign_attrs(case=case["name"], case_title=case["title"], design_beta=case["beta"],
+                           design_mass=case["mass"], nominal_eps_bar=case["eps_bar"],
                            disk_mass=setup.M, **attrs)
 
 
-def uncertainty_rows(ds: xr.Dataset, paper: dict) -> list[Reproduced]:
-    """Are Table 2's printed force and decay time of the optimum row within input uncertainty,
-    and does that row balance over the whole input ranges?"""
+def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reproduced]:
+    """One row per ``quantity -> paper key`` of ``printed``: is the paper's value within the
+    band of its reproduction?"""
     rows = []
-    for quantity, key in (("force_max", "table2_fmax_3"), ("force_decay_time", "table2_decay_3")):
+    for quantity, key in printed.items():
         holds, text = band_statement(ds, quantity, paper[key])
         rows.append(_claim(f"{key}_within_uncertainty", holds, f"printed {text}"))
+    return rows
+
+
+def balances_row(ds: xr.Dataset) -> Reproduced:
+    """Does the case balance over the whole input ranges?  States the share that does, the
+    inputs that decide it, and the case against the existence bound m/M >= eps_bar/2 (eq. 34)."""
     q = list(ds.quantity_name.values).index("balanced")
     share = float(ds.y.values[q].mean())
     st, conf, names = ds.ST.values[q, -1], ds.ST_conf.values[q, -1], ds.input_name.values
@@ -90,10 +102,27 @@ def uncertainty_rows(ds: xr.Dataset, paper: dict) -> list[Reproduced]:
                         for i in np.argsort(st)[::-1][:2])
     ratio = ds.attrs["design_mass"] / ds.attrs["disk_mass"]
     half = ds.attrs["nominal_eps_bar"] / 2
-    rows.append(_claim("optimum_balances_within_tolerances", share == 1.0,
-                       f"{share:.1%} of the {ds.sizes['sample']} input points balance by t_end; "
-                       f"whether a run balances depends most on {drivers} (total Sobol "
-                       f"indices): the design has m/M = {ratio:.4g} against eps_bar/2 = "
-                       f"{half:.4g} (eq. 34: a balanced state needs m/M >= eps_bar/2), a "
-                       "bound that a lighter ball or a larger eccentricity crosses"))
-    return rows
+    return _claim("optimum_balances_within_tolerances", share == 1.0,
+                  f"{share:.1%} of the {ds.sizes['sample']} input points balance by t_end; "
+                  f"whether a run balances depends most on {drivers} (total Sobol indices): "
+                  f"the design has m/M = {ratio:.4g} against eps_bar/2 = {half:.4g} (eq. 34: a "
+                  "balanced state needs m/M >= eps_bar/2), a bound that a lighter ball or a "
+                  "larger eccentricity crosses")
+
+
+#: per case: the printed values (quantity -> key in data/paper_values.csv) set against its band
+PRINTED = {"table2": {"force_max": "table2_fmax_3", "force_decay_time": "table2_decay_3"},
+           "fig7": {"envelope_time": "fig7_balance_time"}}
+
+
+def printed_values(ds: xr.Dataset, paper: dict) -> dict[str, float]:
+    """The paper's values of the case's quantities, by quantity."""
+    return {q: paper[key] for q, key in PRINTED[ds.attrs["case"]].items()}
+
+
+def uncertainty_rows(studies: dict[str, xr.Dataset], paper: dict) -> list[Reproduced]:
+    """Every printed value of every case against its band; whether Table 2's optimum balances
+    over the whole ranges."""
+    rows = [row for name, ds in studies.items()
+            for row in within_band_rows(ds, paper, PRINTED[name])]
+    return rows + [balances_row(studies["table2"])]
