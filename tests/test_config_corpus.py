@@ -81,6 +81,7 @@ CASES = [
     ("paper_b.uncertainty.ranges.R", [0.12, 0.08], None),
     ("paper_b.uncertainty.ranges.phi1", [0.0, 400.0], "paper_b.uncertainty.ranges.phi1.1"),
     ("paper_b.uncertainty.n_base", 2.5, None), ("paper_b.uncertainty.resamples", 0, None),
+    ("paper_b.uncertainty.mean_over_ics.n_base", 0, None),
     ("paper_c.uncertainty.tolerance", 0.0, None), ("paper_c.uncertainty.convergence", [], None),
     ("paper_b.pareto.positions", 1, None), ("paper_b.pareto.seed", -3, None),
     ("paper_b.pareto.speed", NAN, None), ("paper_b.pareto.n_gen", 1.5, None),

@@ -229,18 +229,27 @@ def test_the_gap_to_the_front_is_measured_at_no_more_force():
 
 def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
     """A lighter ball than the existence bound m/M >= eps_bar/2 never balances: its times are
-    t_end and it is flagged; a nominal run gives the engine's own numbers."""
-    from rotorvib.papers.b.uncertainty import run_case
+    t_end and it is flagged; a nominal run gives the engine's own numbers; a case with fixed
+    initial conditions averages over them and has no ball-position inputs."""
+    from rotorvib.papers.b.uncertainty import case_inputs, run_case
 
+    case = {"beta": 0.2, "mass": 0.006, "eps_bar": 0.012, "speed": 220.0}
     x = [[0.1, 0.01, 1e-3, 40.0, 45.0, 0.0, 0.0, 0.0],
          [0.1, 0.01, 1e-3, 40.0, 45.0, 0.0, -0.2, 0.0]]
-    out = run_case(setup, x, beta=0.2, mass=0.006, eps_bar=0.012, speed=220.0,
-                   kinematics="printed")
-    direct = run(engine.FIXED, *setup.run_inputs(mass=0.006, beta=0.2, eps_bar=0.012,
-                                                 phi0_deg=(40.0, 45.0), kinematics="printed",
-                                                 speed=220.0), setup.criterion,
-                 **setup.tolerances)
+    out = run_case(setup, x, case, kinematics="printed")
+
+    def direct(phi):
+        return run(engine.FIXED, *setup.run_inputs(mass=0.006, beta=0.2, eps_bar=0.012,
+                                                   phi0_deg=phi, kinematics="printed",
+                                                   speed=220.0), setup.criterion,
+                   **setup.tolerances)
+
     np.testing.assert_array_equal(out["balanced"], [1.0, 0.0])
-    assert out["balance_time"][0] == direct.balance_time
-    assert out["force_max"][0] == direct.force_max
+    assert out["balance_time"][0] == direct((40.0, 45.0)).balance_time
+    assert out["force_max"][0] == direct((40.0, 45.0)).force_max
     assert out["balance_time"][1] == setup.criterion.t_end
+    ics = {**case, "ics": [(40.0, 45.0), (110.0, 115.0)]}
+    assert "phi1" not in case_inputs(ics) and len(case_inputs(ics)) == 6
+    mean = run_case(setup, [[0.1, 0.01, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
+    assert mean["balance_time"][0] == pytest.approx(
+        np.mean([direct(p).balance_time for p in ics["ics"]]), rel=1e-12)

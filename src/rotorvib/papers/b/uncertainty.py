@@ -12,6 +12,7 @@ printed value lies within input uncertainty of its reproduction.
 
 from __future__ import annotations
 
+import json
 from dataclasses import replace
 from functools import partial
 
@@ -30,56 +31,72 @@ QUANTITIES = {"force_max": "N", "force_decay_time": "s", "balance_time": "s",
 _claim = partial(Reproduced.claim, "B")
 
 
-def run_case(setup: Setup, x, *, beta: float, mass: float, eps_bar: float, speed: float | None,
-             kinematics: str) -> dict[str, np.ndarray]:
-    """The quantities of :data:`QUANTITIES` at each input point ``x[:, INPUTS]`` for the case
-    ``(beta, mass, eps_bar, speed)`` (``speed`` None: the configured run-up), all runs in one
-    batch.  A run that does not balance (or whose force does not decay) by ``t_end`` has no
-    time: its time is capped at ``t_end`` (the quantities are ``min(time, t_end)``, exact below
-    the cap) and ``balanced`` says which runs balanced."""
+def case_inputs(case: dict) -> tuple[str, ...]:
+    """The uncertain inputs of ``case``: all of :data:`INPUTS`, but the ball positions when
+    the case fixes its own (``ics``: a quantity defined as a mean over initial conditions)."""
+    return tuple(n for n in INPUTS if not (case.get("ics") and n in ("phi1", "phi2")))
+
+
+def run_case(setup: Setup, x, case: dict, *, kinematics: str) -> dict[str, np.ndarray]:
+    """The quantities of :data:`QUANTITIES` at each input point ``x[:, case_inputs(case)]``
+    for ``case`` (``beta``, ``mass``, ``eps_bar``, ``speed`` or None for the configured
+    run-up, and ``ics``, a list of ball positions, when the quantities are means over them),
+    all runs in one batch.  A run that does not balance (or whose force does not decay) by
+    ``t_end`` has no time: its time is capped at ``t_end`` (the quantities are ``min(time,
+    t_end)``, exact below the cap) and ``balanced`` says which runs balanced."""
+    names = case_inputs(case)
     inputs = []
-    for R, zeta, r0, phi1, phi2, de, dm, dk in np.asarray(x, float):
-        s = replace(setup, k=setup.k * (1 + dk), r0=r0)
-        inputs.append(s.run_inputs(mass=mass * (1 + dm), eps_bar=eps_bar * (1 + de), beta=beta,
-                                   phi0_deg=(phi1, phi2), kinematics=kinematics, speed=speed,
-                                   R=R, zeta=zeta))
+    for row in np.asarray(x, float):
+        v = dict(zip(names, row))
+        positions = case.get("ics") or [(v["phi1"], v["phi2"])]
+        s = replace(setup, k=setup.k * (1 + v["k_tolerance"]), r0=v["r0"])
+        inputs += [s.run_inputs(mass=case["mass"] * (1 + v["mass_tolerance"]),
+                                eps_bar=case["eps_bar"] * (1 + v["eps_tolerance"]),
+                                beta=case["beta"], phi0_deg=tuple(phi), kinematics=kinematics,
+                                speed=case["speed"], R=v["R"], zeta=v["zeta"])
+                   for phi in positions]
     metrics = setup.runs(inputs, progress=False)
+    metrics = metrics.reshape(len(x), len(inputs) // len(x), -1)
     t_end = setup.criterion.t_end
 
     def capped(time, flag):
-        return np.where(metric(metrics, flag) == 1, metric(metrics, time), t_end)
+        return np.where(metric(metrics, flag) == 1, metric(metrics, time), t_end).mean(axis=1)
 
-    return {"force_max": metric(metrics, "force_max"),
+    return {"force_max": metric(metrics, "force_max").mean(axis=1),
             "force_decay_time": capped("force_decay_time", "force_decayed"),
             "balance_time": capped("balance_time", "balanced"),
             "envelope_time": capped("envelope_time", "envelope_balanced"),
-            "balanced": (metric(metrics, "balanced") == 1).astype(float)}
+            "balanced": (metric(metrics, "balanced") == 1).mean(axis=1)}
 
 
 def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, kinematics: str,
                         n_base: int, convergence, resamples: int, seed: int) -> xr.Dataset:
     """Sobol indices and bands of the quantities of ``case`` (``name``, ``title``, ``beta``,
-    ``mass``, ``eps_bar``, ``phi0_deg``, ``speed`` or None) over ``ranges`` (input -> ``[low, high]``,
-    keys :data:`INPUTS`); the nominal run is the case as the paper runs it: R, zeta and r(0)
-    of ``setup``, balls at ``phi0_deg``, no tolerances."""
-    spec = problem({name: tuple(ranges[name]) for name in INPUTS})
+    ``mass``, ``eps_bar``, ``speed`` or None, ``phi0_deg`` or ``ics``, and ``printed``: the
+    paper's values to set against the bands, quantity -> key in the paper values) over ``ranges``
+    (input -> ``[low, high]``, keys :func:`case_inputs`); the nominal run is the case as the
+    paper runs it: R, zeta and r(0) of ``setup``, its ball positions, no tolerances."""
+    names = case_inputs(case)
+    spec = problem({name: tuple(ranges[name]) for name in names})
     x = sample(spec, n_base, seed)
-    run = partial(run_case, setup, beta=case["beta"], mass=case["mass"],
-                  eps_bar=case["eps_bar"], speed=case["speed"], kinematics=kinematics)
-    nominal = {q: v[0] for q, v in run([[setup.R, setup.zeta, setup.r0, *case["phi0_deg"],
-                                         0.0, 0.0, 0.0]]).items()}
+    run = partial(run_case, setup, case=case, kinematics=kinematics)
+    at = {"R": setup.R, "zeta": setup.zeta, "r0": setup.r0,
+          **dict(zip(("phi1", "phi2"), case.get("phi0_deg", ())))}
+    nominal = {q: v[0] for q, v in run([[at.get(n, 0.0) for n in names]]).items()}
     ds = study_dataset(spec, x, run(x), nominal, QUANTITIES, n_bases=convergence,
                        resamples=resamples, seed=seed)
     speed = "the run-up" if case["speed"] is None else f"{case['speed']:g} rad/s"
+    over = (f" (each a mean over {len(case['ics'])} initial conditions)" if case.get("ics")
+            else "")
     attrs = dataset_attrs(
         f"uncertainty of {case['title']}",
         f"Beyond the paper: Sobol indices ({n_base} base points) and 5-95 % bands of the peak "
-        f"bearing force, its decay time and the balance times at beta = {case['beta']:g}, m = "
-        f"{1e3 * case['mass']:g} g, eps_bar = {case['eps_bar']:g}, {speed} over the uncertain "
-        "inputs", case["title"])
+        f"bearing force, its decay time and the balance times{over} at beta = "
+        f"{case['beta']:g}, m = {1e3 * case['mass']:g} g, eps_bar = {case['eps_bar']:g}, "
+        f"{speed} over the uncertain inputs", case["title"])
     return ds.assign_attrs(case=case["name"], case_title=case["title"], design_beta=case["beta"],
                            design_mass=case["mass"], nominal_eps_bar=case["eps_bar"],
-                           disk_mass=setup.M, **attrs)
+                           disk_mass=setup.M, printed=json.dumps(case["printed"]), **attrs)
 
 
 def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reproduced]:
@@ -110,19 +127,14 @@ def balances_row(ds: xr.Dataset) -> Reproduced:
                   "larger eccentricity crosses")
 
 
-#: per case: the printed values (quantity -> key in data/paper_values.csv) set against its band
-PRINTED = {"table2": {"force_max": "table2_fmax_3", "force_decay_time": "table2_decay_3"},
-           "fig7": {"envelope_time": "fig7_balance_time"}}
-
-
 def printed_values(ds: xr.Dataset, paper: dict) -> dict[str, float]:
     """The paper's values of the case's quantities, by quantity."""
-    return {q: paper[key] for q, key in PRINTED[ds.attrs["case"]].items()}
+    return {q: paper[key] for q, key in json.loads(ds.attrs["printed"]).items()}
 
 
 def uncertainty_rows(studies: dict[str, xr.Dataset], paper: dict) -> list[Reproduced]:
     """Every printed value of every case against its band; whether Table 2's optimum balances
     over the whole ranges."""
-    rows = [row for name, ds in studies.items()
-            for row in within_band_rows(ds, paper, PRINTED[name])]
+    rows = [row for ds in studies.values()
+            for row in within_band_rows(ds, paper, json.loads(ds.attrs["printed"]))]
     return rows + [balances_row(studies["table2"])]
