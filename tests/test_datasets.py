@@ -8,8 +8,8 @@ import xarray as xr
 
 from conftest import cf_check
 from rotorvib.io.config import config_hash
-from rotorvib.io.datasets import (INPUTS_CONFIG_PARAM, DatasetError, Provenance, job_config,
-                                   read_dataset, write_dataset)
+from rotorvib.io.config import INPUTS_CONFIG_PARAM, job_config
+from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 
 
 def _dataset():

@@ -8,13 +8,14 @@ from snakemake.exceptions import WorkflowError
 from snakemake.utils import update_config
 
 from rotorvib.io.config import (
+    INPUTS_CONFIG_PARAM,
     ConfigError,
     config_hash,
+    job_config,
     load_yaml,
     typed_overrides,
     validate_config,
 )
-from rotorvib.io.datasets import INPUTS_CONFIG_PARAM, job_config
 from rotorvib.io.fingerprint import code_fingerprint
 from rotorvib.report import label, numbers_of_name, order_key
 
@@ -191,7 +192,7 @@ def inputs_config_hashes(wildcards, input):
 
 
 def add_input_checks(rules):
-    """Give every script rule the parameter rotorvib.io.datasets.INPUTS_CONFIG_PARAM."""
+    """Give every script rule the parameter rotorvib.io.config.INPUTS_CONFIG_PARAM."""
     for each in rules:
         if each.script:
             each.set_params(**{INPUTS_CONFIG_PARAM: inputs_config_hashes})

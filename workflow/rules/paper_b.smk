@@ -1,6 +1,6 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
 from rotorvib.checks import sobol_design_problem
-from rotorvib.papers.b.setup import existence_problems, study_problem
+from rotorvib.papers.b.config_checks import existence_problems, study_problem
 
 B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
 # The cases of the uncertainty study (beyond the paper), from their sections of the config.

@@ -2,7 +2,8 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, job_config, write_dataset
+from rotorvib.io.config import job_config
+from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.optimise import ga_dataset
 from rotorvib.papers.b.setup import Setup

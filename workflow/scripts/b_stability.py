@@ -4,7 +4,8 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, job_config, write_dataset
+from rotorvib.io.config import job_config
+from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.stability_maps import stability_dataset
 
 sys.stderr = open(snakemake.log[0], "w", buffering=1)

@@ -2,7 +2,8 @@
 
 import sys
 
-from rotorvib.io.datasets import Provenance, job_config, write_dataset
+from rotorvib.io.config import job_config
+from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.responses import figure_runs, time_response_dataset
 from rotorvib.papers.b.setup import Setup
 

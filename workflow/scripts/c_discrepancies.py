@@ -6,7 +6,8 @@ import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.io.datasets import Provenance, job_config, write_dataset
+from rotorvib.io.config import job_config
+from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.c.discrepancies import (MODELS, hypotheses, inversions,
                                              printed_determinant_ga)
 from rotorvib.papers.c.studies import REFERENCE

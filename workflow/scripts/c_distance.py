@@ -4,7 +4,8 @@ import sys
 
 import numpy as np
 
-from rotorvib.io.datasets import Provenance, job_config, write_dataset
+from rotorvib.io.config import job_config
+from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import distance_dataset
 

@@ -55,6 +55,17 @@ _StrictLoader.add_implicit_resolver(
     list("-+0123456789."))
 
 
+#: The parameter through which the workflow gives a job the configuration hash of each input
+#: dataset's producer (checked by :func:`rotorvib.io.datasets.read_dataset`).
+INPUTS_CONFIG_PARAM = "inputs_config_sha256"
+
+
+def job_config(params) -> dict:
+    """The configuration a job records in its datasets: its rule's parameters (a mapping, e.g.
+    ``snakemake.params``) without the input check :data:`INPUTS_CONFIG_PARAM` itself."""
+    return {k: v for k, v in params.items() if k != INPUTS_CONFIG_PARAM}
+
+
 def load_yaml(path: str | Path) -> dict:
     """A YAML mapping from ``path``; :class:`ConfigError` with file, line and column for a
     syntax error or a duplicate key, and for a file that is not a mapping."""

@@ -9,8 +9,8 @@ provenance give byte-identical files (no wall-clock time is written; the date, i
 wrote it (say, a variable overwritten with NaN) stops the reading job with an error that names
 the file, the variable and the rule to rerun.  Given the hash of the configuration the reading job
 expects its producer to have used (the workflow passes it as the parameter
-:data:`INPUTS_CONFIG_PARAM`), it also refuses a dataset made under another configuration (copied
-in, restored from another run, or marked current with ``--touch``).
+:data:`rotorvib.io.config.INPUTS_CONFIG_PARAM`), it also refuses a dataset made under another
+configuration (copied in, restored from another run, or marked current with ``--touch``).
 """
 
 from __future__ import annotations
@@ -27,7 +27,6 @@ import xarray as xr
 from rotorvib.io.config import canonical_json, config_hash
 from rotorvib.io.provenance import git_state, package_versions
 
-INPUTS_CONFIG_PARAM = "inputs_config_sha256"
 PROJECT_URL = "https://github.com/rotorvib/rotorvib"
 LICENSE = "CC-BY-4.0 (data); MIT (code)"
 
@@ -56,12 +55,6 @@ class Provenance:
             attrs["provenance_seed"] = int(self.seed)
         attrs.update({f"provenance_{k}": v for k, v in self.extra.items()})
         return attrs
-
-
-def job_config(params) -> dict:
-    """The configuration a job records in its datasets: its rule's parameters (a mapping, e.g.
-    ``snakemake.params``) without the input check :data:`INPUTS_CONFIG_PARAM` itself."""
-    return {k: v for k, v in params.items() if k != INPUTS_CONFIG_PARAM}
 
 
 def _date_attrs() -> dict:

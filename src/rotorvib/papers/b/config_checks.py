@@ -1,0 +1,55 @@
+"""Paper B's configuration checks that need no model: run by the workflow when it reads the
+configuration, before any job (so they import numpy only, not the compiled engine)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def study_problem(study: dict) -> str | None:
+    """What is wrong with a ``balance_studies`` entry of the config, or None: its axis, ``each``
+    and ``fixed`` parameters must name beta, mass and eps_bar, each once."""
+    given = [study["axis"], *study.get("each", {}), *study["fixed"]]
+    repeated = sorted({name for name in given if given.count(name) > 1})
+    missing = sorted({"beta", "mass", "eps_bar"} - set(given))
+    if repeated:
+        return f"parameter(s) {repeated} given more than once (axis, each, fixed)"
+    if missing:
+        return f"parameter(s) {missing} missing: give them in 'fixed' or 'each'"
+    return None
+
+
+def existence_problems(b: dict) -> list[str]:
+    """Every ball mass of a paper B study (not of the stability maps, which chart where a
+    balanced state exists) below the existence bound (34) ``m >= eps_bar M / 2`` of its
+    eccentricity: such a balancer can never balance, so its balance time is not a number."""
+    M = b["machine"]["M"]
+    problems = []
+
+    def check(key, masses, eps_bars, as_ratio=False):
+        scale = 1.0 if as_ratio else M
+        for m in np.atleast_1d(masses):
+            for eps in np.atleast_1d(eps_bars):
+                if m < eps * scale / 2 * (1 - 1e-12):
+                    bound = eps * scale / 2
+                    problems.append(f"config key 'paper_b.{key}': {m:g} is below the existence "
+                                    f"bound (34) {bound:g} for eps_bar = {eps:g} (m/M >= eps_bar/2)")
+
+    ga = b["ga"]
+    check("ga.mass", ga["mass"][0], ga["eps_bar"])
+    for i, (_, m) in enumerate(b["table2"]["cases"]):
+        check(f"table2.cases.{i}", m, b["table2"]["eps_bar"])
+    check("table1.mass.min", b["table1"]["mass"]["min"], b["table1"]["eps_bar"])
+    for i, (_, m) in enumerate(b["basin"]["cases"]):
+        check(f"basin.cases.{i}", m, b["basin"]["eps_bar"])
+    tr = b["time_responses"]
+    for name in ("fig6", "fig7", "fig11"):
+        check(f"time_responses.{name}.m_bar", tr[name]["m_bar"], tr[name]["eps_bar"], True)
+    check("time_responses.fig15.masses", tr["fig15"]["masses"], tr["fig15"]["eps_bar"])
+    for name, study in b["balance_studies"].items():
+        values = {**study["fixed"], **study.get("each", {})}
+        if study["axis"] in ("mass", "eps_bar"):  # the worst case: least mass, largest eps_bar
+            values[study["axis"]] = study["range"]["min" if study["axis"] == "mass" else "max"]
+        if "mass" in values and "eps_bar" in values:
+            check(f"balance_studies.{name}", np.min(values["mass"]), np.max(values["eps_bar"]))
+    return problems
