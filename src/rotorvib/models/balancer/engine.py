@@ -28,7 +28,7 @@ operating speed and ramp time T: ``w = Omega (t/T - sin(2 pi t/T) / (2 pi))`` fo
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 FIXED, ROTATING = 0, 1
 CONSTANT, RUNUP = 0, 1

@@ -270,7 +270,7 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str,
     order = np.argsort([r["force_max_N"] for r in t2])
     fastest = np.argmin([r["force_decay_time_s"] for r in t2])
     rows.append(_claim("fig16_optimum_best", order[0] == len(t2) - 1 and fastest == len(t2) - 1,
-                     f"peak forces "
+                     "peak forces "
                      + ", ".join(f"{r['force_max_N']:.1f} N" for r in t2) + "; decay times "
                      + ", ".join(f"{r['force_decay_time_s']:.2f} s" for r in t2)))
     return rows

@@ -12,7 +12,7 @@ import numpy as np
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.claims import faster_share
 from rotorvib.papers.b.uncertainty import printed_values
-from rotorvib.io.plotting import PAPER_STYLE, figure, paper_hline, paper_vline, sensitivity
+from rotorvib.io.plotting import PAPER_STYLE, figure, paper_vline, sensitivity
 
 STYLES = {0: "-", 1: "--"}
 SYMBOLS = {"eps_bar": "eps/R"}

@@ -104,7 +104,7 @@ def mass_ratio_rows(mr: xr.Dataset, claims: dict) -> list[Reproduced]:
                "D(w = 1) ordered by distance of mu from 0.85: "
                + ", ".join(f"{at_all[k]:.3g} (mu = {mu[k]:g})" for k in order)),
         _claim("fig6_085_best", at1[0.85] < min(at1[0.2], at1[0.6]),
-             f"D(w = 1) = "
+             "D(w = 1) = "
              + ", ".join(f"{at1[m]:.3g} (mu = {m})" for m in (0.2, 0.6, 0.85, 1.0))
              + ("; mu = 1 is lower still" if at1[1.0] < at1[0.85] else "")),
         _claim("fig6_mu1_close", close <= tol,
