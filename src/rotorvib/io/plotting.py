@@ -109,7 +109,7 @@ def sensitivity(ds, printed: dict[str, float], title: str):
                    label={"S1": "first-order", "ST": "total"}[key])
         ax.set_xticks(list(position), names, rotation=30, fontsize=8)
         ax.set(ylabel=f"Sobol index of {quantity}", ylim=(-0.1, 1.1),
-               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} runs)")
+               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)")
         ax.legend(fontsize=7)
         ax = axes[q, 1]
         for i, name in enumerate(names):
