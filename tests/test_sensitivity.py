@@ -69,3 +69,17 @@ def test_a_design_that_cannot_be_run_is_named():
     assert sobol_design_problem(128, [32, 64, 128]) is None
     assert "96 base points: must be a power of 2" in sobol_design_problem(96, [32])
     assert "at most n_base = 64" in sobol_design_problem(64, [32, 128])
+
+
+def test_an_output_that_does_not_vary_has_no_indices():
+    """SALib gives 0 for a constant output; the variance shared out is 0/0: NaN, and the band
+    statement says the output does not vary."""
+    from rotorvib.methods.sensitivity import band_statement, study_dataset
+
+    spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
+    x = sample(spec, 16, seed=1)
+    ds = study_dataset(spec, x, {"y": np.ones(len(x))}, {"y": 1.0}, {"y": "1"}, n_bases=[16],
+                       resamples=20, seed=1)
+    assert np.all(np.isnan(ds.ST.values)) and np.all(np.isnan(ds.S1.values))
+    inside, text = band_statement(ds, "y", 1.0)
+    assert inside and "does not vary" in text

@@ -6,6 +6,7 @@ import textwrap
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -108,8 +109,10 @@ def sensitivity(ds, printed: dict[str, float], title: str):
                    yerr=ds[f"{key}_conf"].values[q, -1], capsize=2,
                    label={"S1": "first-order", "ST": "total"}[key])
         ax.set_xticks(list(position), names, rotation=30, fontsize=8)
+        constant = bool(np.all(np.isnan(ds.ST.values[q, -1])))
         ax.set(ylabel=f"Sobol index of {quantity}", ylim=(-0.1, 1.1),
-               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)")
+               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)"
+               + (": constant, indices undefined" if constant else ""))
         ax.legend(fontsize=7)
         ax = axes[q, 1]
         for i, name in enumerate(names):

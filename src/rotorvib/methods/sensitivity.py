@@ -43,14 +43,20 @@ def sobol_indices(spec: dict, y, n_bases, *, resamples: int, seed: int,
                   conf_level: float = 0.95) -> dict[str, np.ndarray]:
     """``S1``, ``S1_conf``, ``ST``, ``ST_conf`` (half-widths of the ``conf_level`` intervals),
     each of shape ``(len(n_bases), D)``, from the first ``n (D + 2)`` outputs ``y`` for each
-    ``n`` of ``n_bases``.  Non-finite outputs raise ``ValueError``."""
+    ``n`` of ``n_bases``.  Non-finite outputs raise ``ValueError``; an output that does not vary
+    has no variance to share out, and its indices are NaN (undefined; SALib would give 0)."""
     d = spec["num_vars"]
     y = finite_array("y", y, shape=(None,))
     out = {key: np.empty((len(n_bases), d)) for key in ("S1", "S1_conf", "ST", "ST_conf")}
     for i, n in enumerate(n_bases):
         if n * (d + 2) > len(y):
             raise ValueError(f"n_base = {n} needs {n * (d + 2)} outputs, {len(y)} given")
-        result = sobol_analyze.analyze(spec, y[:n * (d + 2)], calc_second_order=False,
+        part = y[:n * (d + 2)]
+        if np.ptp(part) == 0.0:
+            for key in out:
+                out[key][i] = np.nan
+            continue
+        result = sobol_analyze.analyze(spec, part, calc_second_order=False,
                                        num_resamples=resamples, conf_level=conf_level,
                                        seed=seed)
         for key in out:
@@ -114,10 +120,14 @@ def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[bool, s
     band, units = ds.band.values[q], str(ds.quantity_units.values[q])
     lo, hi = band[0], band[-1]
     st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
-    top = int(np.argmax(st))
     p = ds.percentile.values
+    if np.all(np.isnan(st)):
+        driver = "it does not vary over them (no Sobol index)"
+    else:
+        top = int(np.nanargmax(st))
+        driver = (f"largest total Sobol index: {ds.input_name.values[top]} ({st[top]:.2f} +/- "
+                  f"{conf[top]:.2f}, {int(ds.n_base[-1])} base points)")
     return bool(lo <= value <= hi), (
         f"{value:.4g} {units} against the {p[0]:g}-{p[-1]:g} % band {lo:.4g}-{hi:.4g} {units} "
         f"(median {band[len(band) // 2]:.4g}, nominal {float(ds.nominal[q]):.4g}) over the "
-        f"input ranges; largest total Sobol index: {ds.input_name.values[top]} "
-        f"({st[top]:.2f} +/- {conf[top]:.2f}, {int(ds.n_base[-1])} base points)")
+        f"input ranges; {driver}")

@@ -115,8 +115,9 @@ def balances_row(ds: xr.Dataset) -> Reproduced:
     q = list(ds.quantity_name.values).index("balanced")
     share = float(ds.y.values[q].mean())
     st, conf, names = ds.ST.values[q, -1], ds.ST_conf.values[q, -1], ds.input_name.values
-    drivers = ", ".join(f"{names[i]} ({st[i]:.2f} +/- {conf[i]:.2f})"
-                        for i in np.argsort(st)[::-1][:2])
+    drivers = ("no input (it does not vary)" if np.all(np.isnan(st)) else
+               ", ".join(f"{names[i]} ({st[i]:.2f} +/- {conf[i]:.2f})"
+                         for i in np.argsort(-np.nan_to_num(st, nan=-1.0))[:2]))
     ratio = ds.attrs["design_mass"] / ds.attrs["disk_mass"]
     half = ds.attrs["nominal_eps_bar"] / 2
     return _claim("optimum_balances_within_tolerances", share == 1.0,
