@@ -83,6 +83,12 @@ def dimensionless_amplitude(rotor: Rotor, theta) -> np.ndarray:
     return np.abs(theta) * rotor.k_t / rotor.Gamma0
 
 
+def amplitude(rotor: Rotor, sets, w) -> np.ndarray:
+    """``D(w)`` of the rotor with ``sets`` at frequency ratios ``w = omega / omega_n``."""
+    omega = np.asarray(w) * rotor.omega_n
+    return dimensionless_amplitude(rotor, steady_state(rotor, sets, omega)[..., 0])
+
+
 def bare_rotor_amplitude(w) -> np.ndarray:
     """``D = 1/|1 - w^2|`` of the rotor without absorber (infinite at ``w = 1``)."""
     with np.errstate(divide="ignore"):
@@ -107,7 +113,7 @@ def rotor_peak(rotor: Rotor, sets, *, samples: int = 4001) -> tuple[float, float
     w = np.geomspace(w_nat[0] / 2, 2 * w_nat[-1], samples)
 
     def D(x):
-        return dimensionless_amplitude(rotor, steady_state(rotor, sets, np.asarray(x) * rotor.omega_n)[..., 0])
+        return amplitude(rotor, sets, x)
 
     i = int(np.argmax(D(w)))
     lo, hi = w[max(i - 1, 0)], w[min(i + 1, samples - 1)]

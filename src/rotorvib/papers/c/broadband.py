@@ -24,9 +24,9 @@ import xarray as xr
 
 from rotorvib.comparison import Reproduced
 from rotorvib.methods.ga import ParetoFront, pareto_front
-from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
+from rotorvib.models.absorber.frequency_response import (amplitude, bare_rotor_amplitude,
                                                          dimensionless_amplitude, rotor_peak,
-                                                         steady_state, theta_eq20)
+                                                         theta_eq20)
 from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
                                                  dual_to_vector)
 from rotorvib.models.absorber.time_response import linear_response
@@ -101,12 +101,8 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
     bounds' least spring stiffness (for :func:`tuned_mass_floor`)."""
     x_broadband = pick_at_mass(front, float(added_mass(dual_to_vector(table2))))
     designs = _designs(rotor, table2, x_single, d_single, x_broadband)
-    omega = np.asarray(w) * rotor.omega_n
-    D = np.stack([dimensionless_amplitude(rotor, steady_state(rotor, s, omega)[..., 0])
-                  for s in designs.values()])
-    band = np.stack([dimensionless_amplitude(
-        rotor, steady_state(rotor, s, np.asarray(band_w) * rotor.omega_n)[..., 0]).max()
-        for s in designs.values()])
+    D = np.stack([amplitude(rotor, s, w) for s in designs.values()])
+    band = np.array([amplitude(rotor, s, band_w).max() for s in designs.values()])
     peaks = np.array([rotor_peak(rotor, s) for s in designs.values()])
     theta = np.stack([linear_response(rotor, s, rotor.omega_n, t)[:, 0]
                       for s in designs.values()])
