@@ -8,6 +8,7 @@ configuration).
 
 from __future__ import annotations
 
+import json
 from functools import partial
 
 import numpy as np
@@ -399,3 +400,8 @@ def reproduce(*, st2, st3, tr, beta, mass, ga, table1, forces, basin, R, ga_boun
             + basin_rows(basin, kin, typical)
             for kin in labels(beta, "kinematics")}
     return merge_variants(rows) + stability_rows(st2, st3) + cost_rows(beta, mass, ga)
+
+
+def printed_values(ds: xr.Dataset, paper: dict) -> dict[str, float]:
+    """The paper's values of an uncertainty case's quantities, by quantity."""
+    return {q: paper[key] for q, key in json.loads(ds.attrs["printed"]).items()}

@@ -10,8 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorvib.io.coords import labels, pick
-from rotorvib.papers.b.claims import faster_share
-from rotorvib.papers.b.uncertainty import printed_values
+from rotorvib.papers.b.claims import faster_share, printed_values
 from rotorvib.io.plotting import PAPER_STYLE, figure, paper_vline, sensitivity
 
 STYLES = {0: "-", 1: "--"}

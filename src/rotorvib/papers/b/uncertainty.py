@@ -128,11 +128,6 @@ def balances_row(ds: xr.Dataset) -> Reproduced:
                   "larger eccentricity crosses")
 
 
-def printed_values(ds: xr.Dataset, paper: dict) -> dict[str, float]:
-    """The paper's values of the case's quantities, by quantity."""
-    return {q: paper[key] for q, key in json.loads(ds.attrs["printed"]).items()}
-
-
 def uncertainty_rows(studies: dict[str, xr.Dataset], paper: dict) -> list[Reproduced]:
     """Every printed value of every case against its band; whether Table 2's optimum balances
     over the whole ranges."""
