@@ -10,12 +10,16 @@ within ``--target`` seconds of a reference (the engine at rtol 1e-12), so that t
 compare equal accuracy; then the time of a batch of run-ups on all cores and the
 cached-compilation time of a fresh process.
 
-    python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence]
+    python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence | --stop]
 
 ``--convergence`` prints the convergence study behind paper B's integrator
 (``paper_b.balance.integrator`` in the config): the errors of the balance, envelope and force
 decay times and of the peak force of the same run, both methods, rtol = 1e-6 ... 1e-10
 (atol = 1e-3 rtol), against DOP853 at rtol 1e-13.
+
+``--stop`` prints the evidence behind stopping runs early (``paper_b.balance.stop``): the batch
+of random run-ups with the configured integrator, with and without the stop rule, side by side:
+time, the share of runs that ended early and the number of metrics that differ (none may).
 """
 
 from __future__ import annotations
@@ -30,13 +34,13 @@ from scipy.integrate import solve_ivp
 
 from rotorvib.io.config import load_yaml, validate_config
 from rotorvib.models.balancer import engine
+from rotorvib.models.balancer.analysers import METRICS
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch
 from rotorvib.papers.b.setup import Setup
 
 CONFIG = validate_config(load_yaml("config/config.yaml"), load_yaml("config/schema.yaml"))
 B = CONFIG["paper_b"]
-SETUP = Setup.from_config(**{key: B[key] for key in ("machine", "initial_state", "speed",
-                                                     "balance")})
+SETUP = Setup.from_paper_b(B)
 CRITERION = SETUP.criterion
 T_END, DT, R_THR = CRITERION.t_end, CRITERION.sample_dt, CRITERION.r_threshold
 
@@ -142,6 +146,48 @@ def convergence(p, y0):
                   f"{res.force_max / ref.force_max - 1:13.1e}")
 
 
+def batch_inputs(p, y0, runs):
+    """``runs`` variants of the run: ball damping D scaled by 0.1 .. 1, half of them with Fig
+    7's ball mass and half with any mass up to 2x it, balls anywhere."""
+    rng = np.random.default_rng(1)
+    params = np.repeat(p[None], runs, axis=0)
+    params[:, 6] *= rng.uniform(0.1, 1.0, runs)                   # ball damping D
+    params[1::2, 1] *= rng.uniform(0.6, 2.0, runs // 2)            # ball mass m (D scales too)
+    params[1::2, 6] *= params[1::2, 1] / p[1]
+    y0s = np.repeat(y0[None], runs, axis=0)
+    y0s[:, 2:4] = rng.uniform(0, 2 * np.pi, (runs, 2))             # initial ball angles
+    return params, y0s
+
+
+def stop_study(p, y0, runs):
+    """The batch with the configured integrator, with and without the stop rule, paired."""
+    params, y0s = batch_inputs(p, y0, runs)
+    kw = dict(progress=False, **SETUP.tolerances)
+    run_batch(engine.FIXED, params[:2], y0s[:2], CRITERION, stop=SETUP.stop, **kw)  # compile
+    times, metrics = {False: [], True: []}, {}
+    for _ in range(3):
+        for stop in (False, True):
+            start = time.perf_counter()
+            metrics[stop] = run_batch(engine.FIXED, params, y0s, CRITERION,
+                                      stop=SETUP.stop if stop else None, **kw)
+            times[stop].append(time.perf_counter() - start)
+    full, stopped = metrics[False], metrics[True]
+    names = [n for n in METRICS if n not in ("n_steps", "t_stop")]
+    differ = sum(int(np.sum(~((metric(full, n) == metric(stopped, n))
+                              | (np.isnan(metric(full, n)) & np.isnan(metric(stopped, n))))))
+                 for n in names)
+    balanced = metric(full, "balanced") == 1
+    t_stop = metric(stopped, "t_stop")
+    print(f"{runs} run-ups, {SETUP.method} rtol {SETUP.rtol:g}, stop rule {SETUP.stop}; "
+          f"best of 3 on all cores")
+    print(f"to t_end = {T_END:g} s: {min(times[False]):.2f} s; with the stop rule: "
+          f"{min(times[True]):.2f} s ({min(times[True]) / min(times[False]):.2f}x), steps "
+          f"{metric(stopped, 'n_steps').sum() / metric(full, 'n_steps').sum():.2f}x")
+    print(f"balanced {balanced.mean() * 100:.0f} %; ended early "
+          f"{np.mean(t_stop < T_END) * 100:.0f} %, median {np.median(t_stop[balanced] - metric(full, 'balance_time')[balanced]):.2f} s"
+          f" after the balance time; metrics that differ: {differ} of {len(names) * runs}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=1000)
@@ -149,10 +195,15 @@ def main():
                         help="balance-time error allowed against the reference (s)")
     parser.add_argument("--convergence", action="store_true",
                         help="print the tolerance convergence study instead")
+    parser.add_argument("--stop", action="store_true",
+                        help="print the evidence of the stop rule instead")
     args = parser.parse_args()
     p, y0 = case()
     if args.convergence:
         convergence(p, y0)
+        return
+    if args.stop:
+        stop_study(p, y0, args.runs)
         return
     run(engine.FIXED, p, y0, BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT))  # compile
     reference = engine_run(p, y0, 1e-12)
@@ -174,11 +225,7 @@ def main():
         base = base or elapsed
         print(f"{label:36s} {rtol:6.0e} {elapsed * 1e3:8.1f} ms {elapsed / base:6.2f}x "
               f"{error:10.1e}")
-    rng = np.random.default_rng(1)
-    params = np.repeat(p[None], args.runs, axis=0)
-    params[:, 6] *= rng.uniform(0.1, 1.0, args.runs)              # ball damping D
-    y0s = np.repeat(y0[None], args.runs, axis=0)
-    y0s[:, 2:4] = rng.uniform(0, 2 * np.pi, (args.runs, 2))        # initial ball angles
+    params, y0s = batch_inputs(p, y0, args.runs)
     run_batch(engine.FIXED, params[:2], y0s[:2], BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT),
               progress=False)
     start = time.perf_counter()

@@ -56,6 +56,9 @@ CASES = [
     ("paper_b.balance.integrator.method", "rk4", None),
     ("paper_b.balance.integrator.rtol", 1e-16, None),
     ("paper_b.balance.integrator.atol", 0, None),
+    ("paper_b.balance.stop.margin", 1.0, None), ("paper_b.balance.stop.check_dt", NAN, None),
+    ("paper_b.balance.stop.check_dt", 1e-4, None),          # finer than the samples
+    ("paper_b.balance.stop", {"margin": 0.5}, "paper_b.balance.stop.check_dt"),
     ("paper_b.stability_maps.fig2.beta", {"min": 3.0, "max": 1.0, "n": 10}, None),
     ("paper_b.stability_maps.fig2.omega_bar.n", 100000, "paper_b.stability_maps.fig2"),
     ("paper_b.stability_maps.fig3.m_bar.n", 0, None),

@@ -59,7 +59,7 @@ def test_inversion_recovers_a_known_damping_ratio_from_a_simulated_balance_time(
     """Synthetic case: Fig 7's balance time computed with zeta = 0.013 is handed to the
     inversion as the 'printed' value; starting from the stated 0.01 it finds 0.013 again."""
     cfg = config["paper_b"]
-    setup = Setup.from_config(cfg["machine"], cfg["initial_state"], cfg["speed"], cfg["balance"])
+    setup = Setup.from_paper_b(cfg)
     fig7 = next(q for q in b.quantities(cfg, {}) if q.name == "fig7_balance_time")
     (metrics,) = b.run_all(setup, [(fig7, "printed", {"zeta": 0.013})])
     target = fig7.value(metrics)

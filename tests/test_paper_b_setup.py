@@ -19,9 +19,7 @@ IC1 = (40.0, 45.0)
 @pytest.fixture(scope="module")
 def setup(config):
     """Paper B's setup from the configuration, with 8 s runs (every run below balances)."""
-    b = config["paper_b"]
-    sections = {key: b[key] for key in ("machine", "initial_state", "speed", "balance")}
-    s = Setup.from_config(**sections)
+    s = Setup.from_paper_b(config["paper_b"])
     return dataclasses.replace(s, criterion=dataclasses.replace(s.criterion, t_end=8.0))
 
 

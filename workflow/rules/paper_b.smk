@@ -2,7 +2,10 @@
 from rotorvib.checks import sobol_design_problem
 from rotorvib.papers.b.config_checks import existence_problems, study_problem
 
-B_SETUP = {key: B[key] for key in ("machine", "initial_state", "speed", "balance")}
+B_SETUP = {
+    key: B[key]
+    for key in ("machine", "initial_state", "speed", "balance", "marginal_growth")
+}
 # The cases of the uncertainty study (beyond the paper), from their sections of the config.
 _T2, _F7 = B["table2"], B["time_responses"]["fig7"]
 B_UNCERTAIN = {
@@ -530,13 +533,10 @@ rule b_discrepancies:
     threads: 2
     params:
         paper_b={
+            **B_SETUP,
             **{
                 k: B[k]
                 for k in (
-                    "machine",
-                    "initial_state",
-                    "speed",
-                    "balance",
                     "kinematics",
                     "initial_conditions",
                     "table1",

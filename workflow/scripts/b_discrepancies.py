@@ -16,7 +16,7 @@ sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)
 p = snakemake.params
 b = p.paper_b
-setup = Setup.from_config(b["machine"], b["initial_state"], b["speed"], b["balance"])
+setup = Setup.from_paper_b(b)
 reproduced = read_reproduced(snakemake.input.reproduced)
 missed = misses(read_paper_values(snakemake.input.paper_values), reproduced)
 prefix = "table1_m_opt_"

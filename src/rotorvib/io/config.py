@@ -4,9 +4,9 @@ Files are read by a strict YAML loader: a duplicate key or a syntax error is rep
 file, line and column, and ``1e-9`` is a number (YAML 1.2) rather than a string.  The
 configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
 computation: every number must be finite, an integer must be written as one, and the schema's
-extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``, a cap on the points
-of a grid).  Defaults given in the schema are filled in, and every violation is reported with the
-dotted key it concerns and what is allowed, e.g.::
+extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``, ``x-at-least``, a
+cap on the points of a grid).  Defaults given in the schema are filled in, and every
+violation is reported with the dotted key it concerns and what is allowed, e.g.::
 
     config key 'paper_c.rotor.M': -1.0 is not allowed; must be a number > 0 (disk mass, kg)
 
@@ -218,7 +218,8 @@ def _ordered_problem(value, key) -> str | None:
 
 def _check_extensions(config, schema: dict, root: dict, path=()) -> list[str]:
     """Honour the schema extensions ``x-ordered: true`` (an interval ``[lo, hi]`` or a range
-    ``{min, max, n}`` must increase) and ``x-at-most: other.key`` (this value <= that one), and
+    ``{min, max, n}`` must increase), ``x-at-most: other.key`` (this value <= that one),
+    ``x-below`` (<) and ``x-at-least`` (>=), and
     the naming rule ``*_min < *_max`` for sibling keys."""
     problems = []
     schema = _resolve(schema, root)
@@ -226,7 +227,8 @@ def _check_extensions(config, schema: dict, root: dict, path=()) -> list[str]:
         problem = _ordered_problem(config, _key(path))
         problems += [problem] if problem else []
     for word, holds, relation in (("x-at-most", lambda a, b: a <= b, "<="),
-                                  ("x-below", lambda a, b: a < b, "<")):
+                                  ("x-below", lambda a, b: a < b, "<"),
+                                  ("x-at-least", lambda a, b: a >= b, ">=")):
         if word in schema:
             other = _lookup(root["__config__"], schema[word])
             largest = max(config) if isinstance(config, list) else config

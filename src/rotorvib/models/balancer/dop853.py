@@ -13,9 +13,10 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from rotorvib.models.balancer.analysers import metrics_row, new_analysers
 from rotorvib.models.balancer.engine import (NON_FINITE, OK, all_finite, cannot_step,
-                                             initial_step, metrics_row, new_analysers, rhs,
-                                             sample_into)
+                                             initial_step, rhs, sample_into)
+from rotorvib.models.balancer.settling import CHECK_EVERY, settled
 
 DOPRI5, DOP853 = 0, 1
 METHODS = {"dopri5": DOPRI5, "dop853": DOP853}
@@ -96,10 +97,10 @@ def _dop853_eval(theta, y, F, out):
 
 @njit(cache=True)
 def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
-                     max_steps, out, A, B, C, E3, E5, D):
+                     max_steps, out, stop, A, B, C, E3, E5, D):
     """The engine's ``integrate`` with DOP853 (tableau from :func:`tableau`): the same
     samples, analysers, metrics and statuses; step control as in Hairer's code (safety 0.9,
-    factors 0.2 to 10, no growth right after a rejection)."""
+    factors 0.2 to 10, no growth right after a rejection) and the same early stop."""
     ny = y0.size
     y = y0.copy()
     K = np.empty((_N853_DENSE, ny))
@@ -108,7 +109,7 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
     rhs(form, t0, y, p, K[0])
     acc = new_analysers()
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(K[0]))):
-        return metrics_row(acc, NON_FINITE, 0, r_threshold)
+        return metrics_row(acc, NON_FINITE, 0, t0, r_threshold)
     sample_into(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
     j_sample = 1
     t_sample = t0 + sample_dt
@@ -117,6 +118,7 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
     status = OK
     steps = 0
     rejected = False
+    j_check = stop[CHECK_EVERY]
     while t < t_end:
         status = cannot_step(steps, max_steps, h, t)
         if status != OK:
@@ -152,4 +154,8 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
         factor = 10.0 if e == 0.0 else min(10.0, 0.9 * e ** -0.125)
         h *= min(1.0, factor) if rejected else factor
         rejected = False
-    return metrics_row(acc, status, steps, r_threshold)
+        if j_sample >= j_check:
+            j_check = j_sample + stop[CHECK_EVERY]
+            if settled(stop, p, acc, t, y, r_threshold, f_threshold):
+                break
+    return metrics_row(acc, status, steps, t, r_threshold)

@@ -1,6 +1,7 @@
-"""Compiled core of the automatic ball balancer: right-hand sides, speed profiles, the in-loop
-analysers of balance time and bearing force, and an adaptive Dormand-Prince 5(4) integrator
-(DOPRI5) that feeds them; ``dop853`` holds the 8th-order one, ``batch`` runs either in parallel.
+"""Compiled core of the automatic ball balancer: its right-hand sides and an adaptive
+Dormand-Prince 5(4) integrator (DOPRI5) that feeds samples to the in-loop analysers
+(``analysers``) and stops when ``settling`` says the answer is known; ``dop853`` holds the
+8th-order integrator, ``batch`` runs either in parallel.
 
 Everything here is numba-compiled with ``cache=True``; model parameters travel as arrays (never as
 globals, which a cache would freeze).  Two forms of the same physics:
@@ -20,9 +21,7 @@ globals, which a cache would freeze).  Two forms of the same physics:
     divided by ``M_t R w_n^2`` and ``m R^2 w_n^2``.  Parameters ``P_ROT``: mu, rho, zeta, beta, n,
     Omega, T_ramp (in tau), profile.  Consistent kinematics only.
 
-Speed profiles: ``CONSTANT`` (``w = Omega``) and ``RUNUP``, paper B's eq. (37) scaled to any
-operating speed and ramp time T: ``w = Omega (t/T - sin(2 pi t/T) / (2 pi))`` for ``t < T``
-(T = 0.5 s, Omega = 200 rad/s gives ``400 t - (100/pi) sin(4 pi t)``), then ``w = Omega``.
+Speed profiles and disk kinematics: ``kinematics``.
 """
 
 from __future__ import annotations
@@ -30,9 +29,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from rotorvib.models.balancer.analysers import metrics_row, new_analysers, observe
+from rotorvib.models.balancer.kinematics import disk_kinematics, speed
+from rotorvib.models.balancer.settling import CHECK_EVERY, settled
+
 FIXED, ROTATING = 0, 1
-CONSTANT, RUNUP = 0, 1
-PRINTED, CONSISTENT = 0, 1
 
 # parameter-array layouts
 P_FIXED = ("M", "m", "R", "eps", "k", "c", "D", "n", "Omega", "T_ramp", "profile", "kinematics")
@@ -42,41 +43,6 @@ P_ROT = ("mu", "rho", "zeta", "beta", "n", "Omega", "T_ramp", "profile")
 OK, STEP_UNDERFLOW, NON_FINITE, MAX_STEPS = 0, 1, 2, 3
 STATUS_TEXT = {OK: "ok", STEP_UNDERFLOW: "step size underflow", NON_FINITE: "non-finite state",
                MAX_STEPS: "maximum number of steps reached"}
-
-# metrics returned by `integrate` (one row per run)
-METRICS = ("status", "n_steps", "balance_time", "balanced", "envelope_time", "envelope_balanced",
-           "force_max", "force_max_time", "force_decay_time", "force_decayed", "r_final")
-N_METRICS = len(METRICS)
-#: column of each metric, by name
-COLUMN = {name: i for i, name in enumerate(METRICS)}
-# the same columns as compiled-in constants
-(_M_STATUS, _M_STEPS, _M_BAL_T, _M_BAL, _M_ENV_T, _M_ENV, _M_F_MAX, _M_F_MAX_T, _M_F_T, _M_F_DONE,
- _M_R_FINAL) = (COLUMN[name] for name in METRICS)
-
-
-@njit(cache=True)
-def speed(t, omega, t_ramp, profile):
-    """Return ``(w, w', w'', int_0^t w)`` of the speed profile at time ``t``."""
-    if profile == CONSTANT or t >= t_ramp:
-        if profile == CONSTANT:
-            return omega, 0.0, 0.0, omega * t
-        return omega, 0.0, 0.0, omega * (0.5 * t_ramp + (t - t_ramp))
-    a = 2.0 * np.pi / t_ramp
-    w = omega * (t / t_ramp - np.sin(a * t) / (2.0 * np.pi))
-    wd = omega / t_ramp * (1.0 - np.cos(a * t))
-    wdd = omega / t_ramp * a * np.sin(a * t)
-    integral = omega * (t * t / (2.0 * t_ramp) + (np.cos(a * t) - 1.0) / (a * 2.0 * np.pi))
-    return w, wd, wdd, integral
-
-
-@njit(cache=True)
-def disk_kinematics(t, p):
-    """Disk angle, rate and acceleration ``(Phi, Phi', Phi'')`` for the FIXED form."""
-    w, wd, wdd, integral = speed(t, p[8], p[9], int(p[10]))
-    if int(p[11]) == PRINTED:
-        return w * t, w + wd * t, 2.0 * wd
-    return integral, w, wd
-
 
 @njit(cache=True)
 def _solve_rotor(a11, a12, a22, b1, b2):
@@ -267,92 +233,17 @@ def _hermite(theta, h, y0, f0, y1, f1, out):
         out[j] = h00 * y0[j] + h10 * h * f0[j] + h01 * y1[j] + h11 * h * f1[j]
 
 
-# analyser state carried between samples (indices into one array)
-(_R_PREV, _T_PREV, _R_PREV2, _F_PREV, _BAL_T, _BAL, _PEAK_T, _PEAK_R, _ENV_T, _ENV, _F_MAX,
- _F_MAX_T, _F_T, _F_DONE, _R_LAST) = range(15)
-
-
-@njit(cache=True)
-def new_analysers():
-    acc = np.full(15, np.nan)
-    acc[_R_PREV] = acc[_R_PREV2] = acc[_PEAK_R] = -1.0
-    acc[_BAL] = acc[_ENV] = acc[_F_DONE] = 0.0
-    acc[_F_MAX] = -np.inf
-    return acc
-
-
-@njit(cache=True)
-def _crossing(t_a, v_a, t_b, v_b, level):
-    return t_a + (v_a - level) / (v_a - v_b) * (t_b - t_a)
-
-
-@njit(cache=True)
-def _stays_below(acc, i_time, i_flag, first, previous, value, t, threshold):
-    """Time after which ``value`` stays below ``threshold``: the crossing after the last sample
-    at or above it (flag 0 while it is above)."""
-    if value >= threshold:
-        acc[i_flag] = 0.0
-    elif first:
-        acc[i_time], acc[i_flag] = t, 1.0
-    elif previous >= threshold:
-        acc[i_time] = _crossing(acc[_T_PREV], previous, t, value, threshold)
-        acc[i_flag] = 1.0
-
-
-@njit(cache=True)
-def _observe(acc, t, r, force, r_threshold, f_threshold):
-    """Feed one sample ``(t, r, F)`` to the balance-time, envelope and force analysers."""
-    first = acc[_R_PREV] < 0.0
-    _stays_below(acc, _BAL_T, _BAL, first, acc[_R_PREV], r, t, r_threshold)
-    # envelope: piecewise linear through the local maxima of r
-    if acc[_R_PREV2] >= 0.0 and acc[_R_PREV2] < acc[_R_PREV] >= r:
-        if acc[_PEAK_R] >= r_threshold > acc[_R_PREV]:
-            acc[_ENV_T] = _crossing(acc[_PEAK_T], acc[_PEAK_R], acc[_T_PREV], acc[_R_PREV],
-                                    r_threshold)
-            acc[_ENV] = 1.0
-        elif acc[_R_PREV] >= r_threshold:
-            acc[_ENV] = 0.0
-        acc[_PEAK_T], acc[_PEAK_R] = acc[_T_PREV], acc[_R_PREV]
-    # bearing force: maximum, and decay below the force threshold for good
-    if force > acc[_F_MAX]:
-        acc[_F_MAX], acc[_F_MAX_T] = force, t
-    _stays_below(acc, _F_T, _F_DONE, first, acc[_F_PREV], force, t, f_threshold)
-    acc[_R_PREV2], acc[_R_PREV], acc[_F_PREV], acc[_T_PREV] = acc[_R_PREV], r, force, t
-    acc[_R_LAST] = r
-
-
-@njit(cache=True)
-def metrics_row(acc, status, steps, r_threshold):
-    # the envelope falls below the threshold after its last peak without a further peak
-    if (acc[_ENV] == 0.0 and acc[_PEAK_R] >= r_threshold > acc[_R_LAST]
-            and acc[_T_PREV] > acc[_PEAK_T]):
-        acc[_ENV_T] = _crossing(acc[_PEAK_T], acc[_PEAK_R], acc[_T_PREV], acc[_R_LAST],
-                                r_threshold)
-        acc[_ENV] = 1.0
-    m = np.full(N_METRICS, np.nan)
-    m[_M_STATUS], m[_M_STEPS] = status, steps
-    m[_M_BAL_T] = acc[_BAL_T] if acc[_BAL] == 1.0 else np.nan
-    m[_M_BAL] = acc[_BAL]
-    m[_M_ENV_T] = acc[_ENV_T] if acc[_ENV] == 1.0 else np.nan
-    m[_M_ENV] = acc[_ENV]
-    m[_M_F_MAX], m[_M_F_MAX_T] = acc[_F_MAX], acc[_F_MAX_T]
-    m[_M_F_T] = acc[_F_T] if acc[_F_DONE] == 1.0 else np.nan
-    m[_M_F_DONE] = acc[_F_DONE]
-    m[_M_R_FINAL] = acc[_R_LAST]
-    return m
-
-
 @njit(cache=True)
 def sample_into(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
     r, force = radius_and_force(form, ys, p)
     if j < out.shape[0]:
         out[j, :] = ys
-    _observe(acc, t, r, force, r_threshold, f_threshold)
+    observe(acc, t, r, force, r_threshold, f_threshold)
 
 
 @njit(cache=True)
 def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
-              max_steps, out):
+              max_steps, out, stop):
     """Integrate from ``(t0, y0)`` to ``t_end``; return the metrics row (``METRICS``).
 
     The solution is sampled every ``sample_dt`` (cubic Hermite interpolation inside each step).
@@ -362,6 +253,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     through the local maxima of ``r``), the bearing-force maximum and its decay time (same rule as
     the balance time with ``f_threshold``).  Samples are stored in ``out`` (rows) while it has
     room (pass an empty ``(0, len(y0))`` array for none).  A failed integration sets ``status``.
+    Every ``stop[CHECK_EVERY]`` samples the run ends early if the certificate row ``stop``
+    (:mod:`settling`) shows that no later sample can change a metric.
     """
     ny = y0.size
     y = y0.copy()
@@ -372,7 +265,7 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     ytmp, ynew, err, ys = np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny)
     acc = new_analysers()
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f0))):
-        return metrics_row(acc, NON_FINITE, 0, r_threshold)
+        return metrics_row(acc, NON_FINITE, 0, t0, r_threshold)
     sample_into(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
     j_sample = 1
     t_sample = t0 + sample_dt
@@ -380,6 +273,7 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     h = initial_step(form, t0, y, f0, p, rtol, atol, t_end - t0)
     status = OK
     steps = 0
+    j_check = stop[CHECK_EVERY]
     while t < t_end:
         status = cannot_step(steps, max_steps, h, t)
         if status != OK:
@@ -425,4 +319,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
         y[:] = ynew
         f0[:] = k7
         h *= min(5.0, max(0.2, 0.9 * e ** -0.2)) if e > 0.0 else 5.0
-    return metrics_row(acc, status, steps, r_threshold)
+        if j_sample >= j_check:
+            j_check = j_sample + stop[CHECK_EVERY]
+            if settled(stop, p, acc, t, y, r_threshold, f_threshold):
+                break
+    return metrics_row(acc, status, steps, t, r_threshold)

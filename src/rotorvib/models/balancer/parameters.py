@@ -17,7 +17,7 @@ import numpy as np
 
 from rotorvib.checks import require
 
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import kinematics
 
 
 @dataclass(frozen=True)
@@ -126,18 +126,18 @@ class SpeedProfile:
 
     @property
     def profile_code(self) -> int:
-        return engine.RUNUP if self.kind == "runup" else engine.CONSTANT
+        return kinematics.RUNUP if self.kind == "runup" else kinematics.CONSTANT
 
     def speed(self, t):
         """``(w, w', w'', int w dt)`` at times ``t`` (vectorised)."""
-        out = np.array([engine.speed(float(ti), self.omega, self.t_ramp, self.profile_code)
+        out = np.array([kinematics.speed(float(ti), self.omega, self.t_ramp, self.profile_code)
                         for ti in np.atleast_1d(t)])
         return tuple(out.T)
 
 
 def fixed_parameters(b: Balancer, profile: SpeedProfile) -> np.ndarray:
     """Parameter array of the FIXED form (layout ``engine.P_FIXED``)."""
-    kin = engine.PRINTED if profile.kinematics == "printed" else engine.CONSISTENT
+    kin = kinematics.PRINTED if profile.kinematics == "printed" else kinematics.CONSISTENT
     return np.array([b.M, b.m, b.R, b.eps, b.k, b.c, b.D, b.n, profile.omega, profile.t_ramp,
                      profile.profile_code, kin], dtype=float)
 

@@ -13,8 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
-from rotorvib.models.balancer import dop853, engine
+from rotorvib.models.balancer import analysers, dop853, engine, settling
 from rotorvib.models.balancer.batch import integrate_batch
+from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
 
@@ -69,8 +70,8 @@ class BalanceCriterion:
 
 
 def metric(metrics: np.ndarray, name: str) -> np.ndarray:
-    """The column ``name`` (one of ``engine.METRICS``) of a metrics row or table."""
-    return metrics[..., engine.COLUMN[name]]
+    """The column ``name`` (one of ``analysers.METRICS``) of a metrics row or table."""
+    return metrics[..., analysers.COLUMN[name]]
 
 
 @dataclass(frozen=True)
@@ -90,7 +91,7 @@ class RunResult:
 
     @classmethod
     def from_metrics(cls, m, t_end) -> "RunResult":
-        value = {name: float(metric(m, name)) for name in engine.METRICS}
+        value = {name: float(metric(m, name)) for name in analysers.METRICS}
         return cls(balance_time=value["balance_time"], censored=not value["balanced"],
                    envelope_time=value["envelope_time"],
                    envelope_censored=not value["envelope_balanced"],
@@ -158,7 +159,7 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     c = criterion
     out = np.empty((c.n_samples if store else 0, len(y0)))
     args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
-            c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out)
+            c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out, settling.disabled())
     m = (dop853.integrate_dop853(*args, *dop853.tableau(code)) if code == dop853.DOP853
          else engine.integrate(*args))
     _raise_on_failure(m)
@@ -193,10 +194,12 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
 
 
 def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: BalanceCriterion, *,
-              rtol: float = RTOL, atol: float = ATOL, method: str = METHOD, seed: int = 0,
-              chunk: int = 256, progress: bool = True) -> np.ndarray:
-    """Metrics (rows of ``engine.METRICS``, read with :func:`metric`) of many runs, in parallel
-    on all cores.
+              rtol: float = RTOL, atol: float = ATOL, method: str = METHOD,
+              stop: settling.StopRule | None = None, seed: int = 0, chunk: int = 256,
+              progress: bool = True) -> np.ndarray:
+    """Metrics (rows of ``analysers.METRICS``, read with :func:`metric`) of many runs, in
+    parallel on all cores; with a ``stop`` rule (FIXED form) a run ends once its metrics are
+    known (:mod:`settling`), else at ``criterion.t_end``.
 
     Runs are shuffled (seeded) so that long and short runs mix across threads, and processed in
     chunks so that progress can be shown on stderr.  Failed runs are flagged in the ``status``
@@ -209,11 +212,16 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     code = _method(method)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
-    result = np.empty((n, engine.N_METRICS))
+    if stop is not None and form == engine.FIXED:
+        stops = certificates(params, stop, c.sample_dt)
+    else:
+        stops = np.broadcast_to(settling.disabled(), (n, settling.SIZE))
+    result = np.empty((n, analysers.N_METRICS))
     for start in range(0, n, chunk):
         idx = order[start:start + chunk]
         result[idx] = integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol, atol,
                                       c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS,
+                                      np.ascontiguousarray(stops[idx]),
                                       np.arange(len(idx)), code, *dop853.tableau(code))
         if progress and n > chunk:
             done = min(start + chunk, n)

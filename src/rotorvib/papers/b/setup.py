@@ -10,6 +10,7 @@ another operating ``speed``, race radius ``R`` or support damping ``zeta``), bal
 
 from __future__ import annotations
 
+import inspect
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +19,7 @@ from rotorvib.io.coords import axis_coord
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
+from rotorvib.models.balancer.settling import StopRule
 from rotorvib.models.balancer.simulate import (ATOL, METHOD, RTOL, BalanceCriterion, check_batch,
                                                run_batch)
 
@@ -77,12 +79,21 @@ class Setup:
     method: str = METHOD
     rtol: float = RTOL
     atol: float = ATOL
+    #: when a batch run may end before ``t_end`` (``paper_b.balance.stop``); None: never
+    stop: StopRule | None = None
 
     @classmethod
-    def from_config(cls, machine, initial_state, speed, balance) -> "Setup":
-        """From the config sections of the same names (``paper_b.*``)."""
+    def from_config(cls, machine, initial_state, speed, balance, marginal_growth) -> "Setup":
+        """From the config sections and key of the same names (``paper_b.*``)."""
         return cls(**machine, **initial_state, **speed, **balance["integrator"],
-                   criterion=BalanceCriterion.from_config(balance, machine["k"]))
+                   criterion=BalanceCriterion.from_config(balance, machine["k"]),
+                   stop=StopRule.from_config(balance["stop"], marginal_growth))
+
+    @classmethod
+    def from_paper_b(cls, paper_b: dict) -> "Setup":
+        """From the whole ``paper_b`` config section (the keys :meth:`from_config` takes)."""
+        return cls.from_config(**{key: paper_b[key]
+                                  for key in inspect.signature(cls.from_config).parameters})
 
     @property
     def tolerances(self) -> dict:
@@ -111,6 +122,6 @@ class Setup:
         params = np.stack([p for p, _ in inputs])
         y0s = np.stack([y for _, y in inputs])
         metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress,
-                            **self.tolerances)
+                            stop=self.stop, **self.tolerances)
         check_batch(metrics)
         return metrics

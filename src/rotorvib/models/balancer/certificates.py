@@ -1,0 +1,95 @@
+"""Stop certificates of balancer runs (:mod:`settling`): the modes of the linearised balanced
+state of each run's machine at its operating speed.
+
+The linearisation ``J`` is taken from the compiled rotating-frame right-hand side itself
+(``engine.rhs_rotating``, paper A's dimensionless form) by fourth-order central differences at
+the balanced state ``[0, 0, a*, -a*, 0, 0, 0, 0]``: ``J e_j = (-f(+2h) + 8 f(+h) - 8 f(-h) +
+f(-2h)) / (12 h)`` with ``h = 1e-3``, truncation ``O(h^4)``, about 1e-12 -- far below the growth
+rate (``StopRule.neutral``) that tells a neutral mode.  The tests compare it with the symbolic
+linearisation of :mod:`stability`; this module avoids sympy so that a batch job does not load it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from rotorvib.models.balancer.engine import rhs_rotating
+from rotorvib.models.balancer.kinematics import CONSTANT
+from rotorvib.models.balancer.settling import (
+    ALPHA, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
+    QUASI_STATIC, RADIUS, SIZE, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N, WEIGHT_F, WEIGHT_R,
+    StopRule)
+
+STEP = 1e-3
+
+
+@njit(cache=True)
+def balanced_jacobian(p_rot, alpha):
+    """``J`` of the rotating form (parameters ``p_rot``, layout ``engine.P_ROT``, two balls) at
+    the balanced state with the balls at ``+alpha, -alpha``, by the differences of the module
+    docstring."""
+    y0 = np.zeros(8)
+    y0[2], y0[3] = alpha, -alpha
+    J = np.empty((8, 8))
+    y = np.empty(8)
+    f = np.empty(8)
+    for j in range(8):
+        J[:, j] = 0.0
+        for step, weight in ((2.0, -1.0), (1.0, 8.0), (-1.0, -8.0), (-2.0, 1.0)):
+            y[:] = y0
+            y[j] += step * STEP
+            rhs_rotating(0.0, y, p_rot, f)
+            for i in range(8):
+                J[i, j] += weight * f[i] / (12.0 * STEP)
+    return J
+
+
+def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.ndarray:
+    """One certificate row per row of ``params`` (the engine's ``P_FIXED`` layout): the modal
+    matrices and weights of :mod:`settling`'s bounds, or a row with ``ENABLED = 0``."""
+    params = np.atleast_2d(np.asarray(params, dtype=float))
+    unique, inverse = np.unique(params, axis=0, return_inverse=True)
+    M, m, R, eps, k, c, D, n, omega, t_ramp, profile, _ = unique.T
+    mt = M + n * m
+    wn = np.sqrt(k / mt)
+    ok = (n == 2) & (eps > 0) & (2 * m * R >= M * eps)
+    cos_a = np.clip(-M * eps / np.where(ok, 2 * m * R, 1.0), -1.0, 1.0)
+    W = omega / wn
+    rows = np.zeros((len(unique), SIZE))
+    for i in np.flatnonzero(ok):
+        group = np.array([m[i] / mt[i], m[i] * R[i] / (M[i] * eps[i]),      # paper A's groups
+                          c[i] / (2 * np.sqrt(k[i] * mt[i])), D[i] / (m[i] * R[i]**2 * wn[i]),
+                          2.0, W[i], 1.0, CONSTANT])
+        lam, V = np.linalg.eig(balanced_jacobian(group, np.arccos(cos_a[i])))
+        rows[i] = _row(lam, V, R[i], k[i], c[i], wn[i], W[i], rule)
+    rows[:, T_FROM] = np.where(profile == 0, 0.0, t_ramp)      # speed constant from there on
+    rows[:, W_N] = wn
+    rows[:, ALPHA] = np.arccos(cos_a)
+    gain = omega**2 / (k - mt * omega**2 + 1j * c * omega)
+    rows[:, GAIN_RE], rows[:, GAIN_IM], rows[:, FORCE_FACTOR] = gain.real, gain.imag, k + c * omega
+    rows[:, UNBALANCE], rows[:, BALL_MOMENT] = M * eps, m * R
+    rows[:, MARGIN], rows[:, RADIUS] = rule.margin, R
+    rows[:, CHECK_EVERY] = np.where(rows[:, ENABLED] > 0, max(1, round(rule.check_dt / sample_dt)),
+                                    np.inf)
+    return rows[inverse.ravel()]
+
+
+def _row(lam, V, R, k, c, wn, W, rule: StopRule) -> np.ndarray:
+    """The modal part of a certificate row, enabled when :mod:`settling`'s bounds apply."""
+    row = np.zeros(SIZE)
+    if lam.real.max() > rule.neutral or np.linalg.cond(V) > 1e8:
+        return row                                  # unstable or defective: no certificate
+    whirl = V[0] + 1j * V[1]
+    rate = V[4] + 1j * V[5] + 1j * W * whirl
+    scale = np.linalg.norm(V, axis=0)
+    neutral = np.abs(lam.real) <= rule.neutral
+    if np.any(np.abs(whirl[neutral]) > 1e-9 * scale[neutral]):
+        return row                                  # a neutral mode moves r: no certificate
+    row[WEIGHT_R:WEIGHT_R + 8] = np.where(neutral, 0.0, R * np.abs(whirl))
+    row[WEIGHT_F:WEIGHT_F + 8] = np.where(neutral, 0.0, k * R * np.abs(whirl) + c * R * wn * np.abs(rate))
+    Vinv = np.linalg.inv(V)
+    row[VINV_RE:VINV_RE + 64], row[VINV_IM:VINV_IM + 64] = Vinv.real.ravel(), Vinv.imag.ravel()
+    row[QUASI_STATIC] = float(neutral.any())
+    row[ENABLED] = 1.0
+    return row

@@ -1,0 +1,142 @@
+"""Stopping a run once its answer is known: a bound on the whirl radius and the bearing force
+for the rest of a run at constant speed.
+
+After the run-up the balancer is autonomous in the frame turning with the disk.  Near the
+balanced state ``q* = (0, 0, a*, -a*)`` (eq. 33; or its mirror image) the deviation ``dq`` of the
+rotating-frame state ``[u, v, a1, a2, u', v', a1', a2']`` (paper A's units: lengths in ``R``, time
+``tau = w_n t``) obeys ``dq' = J dq``, ``J`` the linearisation (:mod:`certificates`).  With
+``J = V diag(lambda) V^-1`` and modal amplitudes ``c = V^-1 dq(tau)``, every later state is
+``dq(tau') = sum_k c_k e^{lambda_k (tau' - tau)} v_k``; when no ``Re lambda_k`` is positive,
+``|e^{lambda_k s}| <= 1`` for ``s >= 0`` and the triangle inequality bounds, for all later times,
+
+    r = R |u + i v|          <=  sum_k |c_k| R |v_k,u + i v_k,v|                     =: B_r,
+    F = k r + c r' <= k r + c |z'|
+                             <=  sum_k |c_k| (k R |v_k,u + i v_k,v|
+                                  + c R w_n |v_k,u' + i v_k,v' + i W (v_k,u + i v_k,v)|) =: B_F,
+
+``z = x + i y`` the centre in the fixed frame, ``W = Omega / w_n``.  A run may stop once the
+balance time, the envelope time and the force decay time are settled (the analysers' flags) and
+``B_r <= margin r_threshold``, ``B_F <= margin f_threshold`` and ``B_F`` is below the force
+maximum: no later sample could move any metric.  ``margin < 1`` leaves room for the nonlinear
+terms the linearisation drops (second order in ``dq``).
+
+At the existence bound (34) the balls meet at ``a* = pi`` and ``J`` has a neutral mode
+(``|Re lambda| <= neutral``): the balls' symmetric separation, which moves ``r`` only at second
+order (its ``u, v`` components vanish).  It is left out of the sums; instead the steady whirl of
+the residual unbalance of the current ball angles, ``z_s = W_d^2 U / (k - M_t W_d^2 + i c W_d)``
+with ``U = M eps + m R sum_i e^{i a_i}`` (rotating frame, ``W_d`` the disk speed), is taken out
+of ``(u, v)`` before the projection and added on its own: ``r_s = |z_s|``, ``F_s = (k + c W_d)
+r_s``.  This assumes the separation does not grow, which holds on the centre manifold above the
+critical speed and is checked by computation (identical metrics with and without stopping: the
+tests and ``python -m benchmarks.balancer --stop``).  A mode that is neutral and
+moves ``r`` at first order, an unstable balanced state, no balanced state (bound 34), a ball
+count other than two or a non-constant speed (the rotating-frame form, the run-up itself): no
+certificate, the run goes on to ``t_end`` as before.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from rotorvib.models.balancer.analysers import answers_settled, force_maximum
+from rotorvib.models.balancer.kinematics import disk_kinematics
+
+# layout of a certificate row (one per run): scalars, then the modal weights of B_r and B_F and
+# the real and imaginary parts of V^-1 (row-major)
+(ENABLED, T_FROM, W_N, ALPHA, QUASI_STATIC, GAIN_RE, GAIN_IM, FORCE_FACTOR, UNBALANCE,
+ BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS) = range(13)
+WEIGHT_R, WEIGHT_F, VINV_RE, VINV_IM = 13, 21, 29, 93
+SIZE = 157
+
+@dataclass(frozen=True)
+class StopRule:
+    """When a batch run may stop before ``t_end``: bounds within ``margin`` of the thresholds,
+    checked every ``check_dt`` (s); a growth rate within ``neutral`` (in ``w_n``) of zero is a
+    neutral mode."""
+
+    margin: float
+    check_dt: float
+    neutral: float
+
+    def __post_init__(self):
+        if not 0.0 < self.margin < 1.0:
+            raise ValueError(f"margin = {self.margin!r}: must lie in (0, 1)")
+        for name in ("check_dt", "neutral"):
+            if not getattr(self, name) > 0.0:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: must be > 0")
+
+    @classmethod
+    def from_config(cls, stop: dict, neutral: float) -> "StopRule":
+        """From ``paper_b.balance.stop`` and ``paper_b.marginal_growth``."""
+        return cls(margin=stop["margin"], check_dt=stop["check_dt"], neutral=neutral)
+
+
+@njit(cache=True)
+def _wrap(a):
+    return (a + np.pi) % (2.0 * np.pi) - np.pi
+
+
+@njit(cache=True)
+def bounds(S, y, phi, phid):
+    """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
+    angle ``phi`` and rate ``phid``, measured from the nearer of the two balanced states."""
+    R, wn, alpha = S[RADIUS], S[W_N], S[ALPHA]
+    co, si = np.cos(phi), np.sin(phi)
+    dq = np.empty(8)
+    dq[0] = (y[0] * co + y[1] * si) / R                  # (x + i y) e^{-i Phi} / R
+    dq[1] = (y[1] * co - y[0] * si) / R
+    a = y[4] + phid * y[1]                               # z' - i Phi' z, turned the same way
+    b = y[5] - phid * y[0]
+    dq[4] = (a * co + b * si) / (R * wn)
+    dq[5] = (b * co - a * si) / (R * wn)
+    d1, d2 = _wrap(y[2] - alpha), _wrap(y[3] + alpha)
+    m1, m2 = _wrap(y[3] - alpha), _wrap(y[2] + alpha)    # mirror image: ball 2 at +alpha
+    if d1 * d1 + d2 * d2 <= m1 * m1 + m2 * m2:
+        dq[2], dq[3], dq[6], dq[7] = d1, d2, y[6] / wn, y[7] / wn
+    else:
+        dq[2], dq[3], dq[6], dq[7] = m1, m2, y[7] / wn, y[6] / wn
+    r_s = 0.0
+    if S[QUASI_STATIC] > 0.0:
+        # steady whirl of the residual unbalance U of the current ball angles, taken out of the
+        # deviation and bounded on its own
+        ur = S[UNBALANCE] + S[BALL_MOMENT] * (np.cos(y[2]) + np.cos(y[3]))
+        ui = S[BALL_MOMENT] * (np.sin(y[2]) + np.sin(y[3]))
+        zr = (S[GAIN_RE] * ur - S[GAIN_IM] * ui) / R
+        zi = (S[GAIN_RE] * ui + S[GAIN_IM] * ur) / R
+        dq[0] -= zr
+        dq[1] -= zi
+        r_s = R * np.sqrt(zr * zr + zi * zi)
+    b_r = r_s
+    b_f = S[FORCE_FACTOR] * r_s
+    for k in range(8):
+        cr = 0.0
+        ci = 0.0
+        for j in range(8):
+            cr += S[VINV_RE + 8 * k + j] * dq[j]
+            ci += S[VINV_IM + 8 * k + j] * dq[j]
+        amplitude = np.sqrt(cr * cr + ci * ci)
+        b_r += amplitude * S[WEIGHT_R + k]
+        b_f += amplitude * S[WEIGHT_F + k]
+    return b_r, b_f
+
+
+@njit(cache=True)
+def settled(S, p, acc, t, y, r_threshold, f_threshold):
+    """True when the run at ``(t, y)`` (FIXED form, parameters ``p``, analyser state ``acc``)
+    may stop: its metrics are settled and the bounds of the module docstring hold."""
+    if S[ENABLED] == 0.0 or t < S[T_FROM] or not answers_settled(acc):
+        return False
+    phi, phid, _ = disk_kinematics(t, p)
+    b_r, b_f = bounds(S, y, phi, phid)
+    return (b_r <= S[MARGIN] * r_threshold and b_f <= S[MARGIN] * f_threshold
+            and b_f < force_maximum(acc))
+
+
+def disabled() -> np.ndarray:
+    """A certificate row that never lets a run stop (stored runs, the rotating form)."""
+    row = np.zeros(SIZE)
+    row[CHECK_EVERY] = np.inf
+    return row

@@ -1,0 +1,131 @@
+"""Stopping a balancer run once its answer is known (rotorvib.models.balancer.settling): the
+bounds vanish at the balanced states, hold along whole trajectories, and stopping changes no
+metric of a batch while it saves most of the integration."""
+
+import numpy as np
+import pytest
+
+from rotorvib.methods.numba_cache import STAMP, drop_if_stale
+from rotorvib.models.balancer import engine, settling
+from rotorvib.models.balancer.certificates import balanced_jacobian, certificates
+from rotorvib.models.balancer.kinematics import disk_kinematics
+from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
+                                                 fixed_state)
+from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run_batch, simulate
+from rotorvib.models.balancer.stability import jacobian
+
+RULE = settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9)
+MARGINAL = 0.006            # kg: m/M = eps_bar/2 at eps_bar = 0.012, the existence bound (34)
+
+
+def machine(mass=0.01, beta=1.0, eps_bar=0.012):
+    return Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=mass, eps_bar=eps_bar, zeta=0.01,
+                                 beta=beta)
+
+
+def certificate(b, profile):
+    return certificates(fixed_parameters(b, profile), RULE, 1e-3)[0]
+
+
+@pytest.mark.parametrize("mass", [0.01, 0.02, MARGINAL])
+def test_the_bounds_vanish_at_both_balanced_states(mass):
+    b = machine(mass)
+    S = certificate(b, SpeedProfile(200.0, "constant"))
+    assert S[settling.ENABLED] == 1.0
+    assert S[settling.QUASI_STATIC] == float(mass == MARGINAL)
+    alpha = b.balanced_angle()
+    for phi0 in ([alpha, -alpha], [-alpha, alpha], [alpha + 2 * np.pi, -alpha]):
+        y = fixed_state(2, r0=0.0, theta0=0.0, phi0=phi0)
+        for t in (0.3, 7.1):
+            phi, phid, _ = disk_kinematics(t, fixed_parameters(b, SpeedProfile(200.0)))
+            b_r, b_f = settling.bounds(S, y, phi, phid)
+            assert b_r < 1e-12 and b_f < 1e-8
+    # a deviation of one ball by 1e-3 rad is seen (first order, or second at the bound)
+    y = fixed_state(2, r0=0.0, theta0=0.0, phi0=[alpha + 1e-3, -alpha])
+    assert settling.bounds(S, y, 0.3, 200.0)[0] > 1e-8
+
+
+@pytest.mark.parametrize("mass, omega", [(0.01, 2.0), (MARGINAL, 2.2), (0.02, 0.7)])
+def test_the_linearisation_of_the_compiled_form_is_the_symbolic_one(mass, omega):
+    """J by differences of the compiled rotating form against the sympy linearisation of the
+    energies (rotorvib.models.balancer.stability), beta = 0.5, at and off the existence bound."""
+    d = machine(mass, beta=0.5).dimensionless()
+    J = balanced_jacobian(np.array([d.mu, d.rho, d.zeta, d.beta, 2.0, omega, 1.0, 0.0]),
+                          np.arccos(max(-1.0, -1 / (2 * d.rho))))
+    assert np.abs(J - jacobian(d.mu, d.rho, d.zeta, d.beta, omega)).max() < 1e-9
+
+
+def test_no_certificate_without_a_stable_balanced_state():
+    below_bound = machine(mass=0.005)                   # 2 m R < M eps: no balanced state
+    subcritical = SpeedProfile(50.0, "constant")        # below omega_n: the state is unstable
+    for b, profile in ((below_bound, SpeedProfile(200.0)), (machine(), subcritical)):
+        S = certificate(b, profile)
+        assert S[settling.ENABLED] == 0.0 and S[settling.CHECK_EVERY] == np.inf
+    assert certificate(machine(), SpeedProfile(200.0, "runup", 0.5))[settling.T_FROM] == 0.5
+
+
+@pytest.mark.parametrize("mass, beta, kinematics, phi0", [
+    (MARGINAL, 0.2, "printed", (40, 45)), (MARGINAL, 1.0, "consistent", (110, 115)),
+    (0.01, 1.0, "printed", (260, 265)), (0.02, 0.3, "consistent", (10, 200))])
+def test_the_radius_never_exceeds_its_bound_later(mass, beta, kinematics, phi0):
+    """Along a whole run-up, at every sample after the ramp where the stop test could pass
+    (``B_r <= margin r_threshold``), r at all later samples stays below B_r itself (no use of
+    the margin); the bound is tight where r is one whirl mode (largest ratio near 1)."""
+    b = machine(mass, beta)
+    profile = SpeedProfile(200.0, "runup", 0.5, kinematics)
+    p = fixed_parameters(b, profile)
+    S = certificate(b, profile)
+    tr = simulate(b, profile, np.radians(phi0), 20.0, store=True, method="dop853", rtol=1e-9,
+                  atol=1e-12)
+    later_max = np.maximum.accumulate(tr.r[::-1])[::-1]
+    ratios = []
+    for i in range(600, len(tr.t), 7):
+        phi, phid, _ = disk_kinematics(tr.t[i], p)
+        b_r = settling.bounds(S, tr.y[i], phi, phid)[0]
+        if b_r <= RULE.margin * 1e-4:
+            ratios.append(later_max[i] / b_r)
+    assert len(ratios) > 1000                   # from about 2 s after balancing on
+    assert 0.9 < max(ratios) <= 1.0 + 1e-6
+
+
+def test_stopping_changes_no_metric_and_saves_most_of_the_work():
+    """Random run-ups over the GA's bounds, half of them at the existence bound, both
+    kinematics, three eccentricities: every metric equal bit for bit with and without stopping,
+    and the balanced runs end long before t_end."""
+    rng = np.random.default_rng(3)
+    params, y0s = [], []
+    for i in range(48):
+        b = machine(MARGINAL if i % 2 else rng.uniform(0.006, 0.02), rng.uniform(0.1, 1.0),
+                    rng.choice([0.007, 0.009, 0.012]))
+        params.append(fixed_parameters(b, SpeedProfile(200.0, "runup", 0.5,
+                                                       ("printed", "consistent")[i // 2 % 2])))
+        y0s.append(fixed_state(2, r0=1e-3, theta0=0.0, phi0=rng.uniform(0, 2 * np.pi, 2)))
+    criterion = BalanceCriterion(r_threshold=1e-4, f_threshold=1.0, t_end=20.0, sample_dt=1e-3)
+    kw = dict(method="dop853", rtol=1e-7, atol=1e-10, progress=False)
+    full = run_batch(engine.FIXED, np.array(params), np.array(y0s), criterion, **kw)
+    stopped = run_batch(engine.FIXED, np.array(params), np.array(y0s), criterion, stop=RULE, **kw)
+    for name in ("status", "balance_time", "balanced", "envelope_time", "envelope_balanced",
+                 "force_max", "force_max_time", "force_decay_time", "force_decayed"):
+        np.testing.assert_array_equal(metric(stopped, name), metric(full, name), err_msg=name)
+    balanced = metric(full, "balanced") == 1.0
+    t_stop = metric(stopped, "t_stop")
+    assert balanced.mean() > 0.9 and np.all(metric(full, "t_stop") == 20.0)
+    assert np.all(t_stop[balanced] < 20.0) and np.all(t_stop[~balanced] == 20.0)
+    assert np.all(t_stop[balanced] > metric(full, "balance_time")[balanced])
+    assert metric(stopped, "n_steps").sum() < 0.5 * metric(full, "n_steps").sum()
+
+
+def test_a_stale_numba_cache_is_emptied(tmp_path):
+    (tmp_path / "a.py").write_text("x = 1\n")
+    cache = tmp_path / "__pycache__"
+    cache.mkdir()
+    files = [cache / "a.f-1.py311.nbi", cache / "a.f-1.py311.1.nbc"]
+    for f in files:
+        f.write_text("compiled")
+    assert drop_if_stale(tmp_path) and not any(f.exists() for f in files)
+    for f in files:
+        f.write_text("compiled")
+    assert not drop_if_stale(tmp_path) and all(f.exists() for f in files)   # same sources
+    (tmp_path / "a.py").write_text("x = 2\n")                               # one module edited
+    assert drop_if_stale(tmp_path) and not any(f.exists() for f in files)
+    assert (cache / STAMP).read_text() != ""
