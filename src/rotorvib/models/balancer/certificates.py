@@ -31,11 +31,10 @@ def balanced_jacobian(p_rot, alpha):
     docstring."""
     y0 = np.zeros(8)
     y0[2], y0[3] = alpha, -alpha
-    J = np.empty((8, 8))
+    J = np.zeros((8, 8))
     y = np.empty(8)
     f = np.empty(8)
     for j in range(8):
-        J[:, j] = 0.0
         for step, weight in ((2.0, -1.0), (1.0, 8.0), (-1.0, -8.0), (-2.0, 1.0)):
             y[:] = y0
             y[j] += step * STEP
@@ -43,6 +42,14 @@ def balanced_jacobian(p_rot, alpha):
             for i in range(8):
                 J[i, j] += weight * f[i] / (12.0 * STEP)
     return J
+
+
+@njit(cache=True)
+def _jacobians(groups, alphas):
+    out = np.empty((groups.shape[0], 8, 8))
+    for i in range(groups.shape[0]):
+        out[i] = balanced_jacobian(groups[i], alphas[i])
+    return out
 
 
 def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.ndarray:
@@ -54,18 +61,18 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     mt = M + n * m
     wn = np.sqrt(k / mt)
     ok = (n == 2) & (eps > 0) & (2 * m * R >= M * eps)
-    cos_a = np.clip(-M * eps / np.where(ok, 2 * m * R, 1.0), -1.0, 1.0)
+    alpha = np.arccos(np.clip(-M * eps / np.where(ok, 2 * m * R, 1.0), -1.0, 1.0))
     W = omega / wn
     rows = np.zeros((len(unique), SIZE))
-    for i in np.flatnonzero(ok):
-        group = np.array([m[i] / mt[i], m[i] * R[i] / (M[i] * eps[i]),      # paper A's groups
-                          c[i] / (2 * np.sqrt(k[i] * mt[i])), D[i] / (m[i] * R[i]**2 * wn[i]),
-                          2.0, W[i], 1.0, CONSTANT])
-        lam, V = np.linalg.eig(balanced_jacobian(group, np.arccos(cos_a[i])))
-        rows[i] = _row(lam, V, R[i], k[i], c[i], wn[i], W[i], rule)
-    rows[:, T_FROM] = np.where(profile == 0, 0.0, t_ramp)      # speed constant from there on
-    rows[:, W_N] = wn
-    rows[:, ALPHA] = np.arccos(cos_a)
+    i = np.flatnonzero(ok)
+    if i.size:
+        groups = np.column_stack([      # paper A's groups, layout engine.P_ROT
+            m[i] / mt[i], m[i] * R[i] / (M[i] * eps[i]), c[i] / (2 * np.sqrt(k[i] * mt[i])),
+            D[i] / (m[i] * R[i]**2 * wn[i]), np.full(i.size, 2.0), W[i], np.ones(i.size),
+            np.full(i.size, float(CONSTANT))])
+        rows[i] = _modal_rows(_jacobians(groups, alpha[i]), R[i], k[i], c[i], wn[i], W[i], rule)
+    rows[:, T_FROM] = np.where(profile == CONSTANT, 0.0, t_ramp)   # constant speed from there
+    rows[:, W_N], rows[:, ALPHA] = wn, alpha
     gain = omega**2 / (k - mt * omega**2 + 1j * c * omega)
     rows[:, GAIN_RE], rows[:, GAIN_IM], rows[:, FORCE_FACTOR] = gain.real, gain.imag, k + c * omega
     rows[:, UNBALANCE], rows[:, BALL_MOMENT] = M * eps, m * R
@@ -75,21 +82,25 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     return rows[inverse.ravel()]
 
 
-def _row(lam, V, R, k, c, wn, W, rule: StopRule) -> np.ndarray:
-    """The modal part of a certificate row, enabled when :mod:`settling`'s bounds apply."""
-    row = np.zeros(SIZE)
-    if lam.real.max() > rule.neutral or np.linalg.cond(V) > 1e8:
-        return row                                  # unstable or defective: no certificate
-    whirl = V[0] + 1j * V[1]
-    rate = V[4] + 1j * V[5] + 1j * W * whirl
-    scale = np.linalg.norm(V, axis=0)
+def _modal_rows(J, R, k, c, wn, W, rule: StopRule) -> np.ndarray:
+    """The modal part of the certificate rows of the stacked linearisations ``J``, enabled where
+    :mod:`settling`'s bounds apply: no growing mode, eigenvectors well conditioned, and no
+    neutral mode that moves ``r`` at first order."""
+    lam, V = np.linalg.eig(J)                       # V[:, :, k]: mode k
+    whirl = V[:, 0] + 1j * V[:, 1]
+    rate = V[:, 4] + 1j * V[:, 5] + 1j * W[:, None] * whirl
     neutral = np.abs(lam.real) <= rule.neutral
-    if np.any(np.abs(whirl[neutral]) > 1e-9 * scale[neutral]):
-        return row                                  # a neutral mode moves r: no certificate
-    row[WEIGHT_R:WEIGHT_R + 8] = np.where(neutral, 0.0, R * np.abs(whirl))
-    row[WEIGHT_F:WEIGHT_F + 8] = np.where(neutral, 0.0, k * R * np.abs(whirl) + c * R * wn * np.abs(rate))
-    Vinv = np.linalg.inv(V)
-    row[VINV_RE:VINV_RE + 64], row[VINV_IM:VINV_IM + 64] = Vinv.real.ravel(), Vinv.imag.ravel()
-    row[QUASI_STATIC] = float(neutral.any())
-    row[ENABLED] = 1.0
-    return row
+    usable = ((lam.real.max(axis=1) <= rule.neutral) & (np.linalg.cond(V) <= 1e8)
+              & ~np.any(neutral & (np.abs(whirl) > 1e-9 * np.linalg.norm(V, axis=1)), axis=1))
+    rows = np.zeros((len(J), SIZE))
+    u = np.flatnonzero(usable)
+    Vinv = np.linalg.inv(V[u])
+    rows[u, WEIGHT_R:WEIGHT_R + 8] = np.where(neutral[u], 0.0, R[u, None] * np.abs(whirl[u]))
+    rows[u, WEIGHT_F:WEIGHT_F + 8] = np.where(
+        neutral[u], 0.0, R[u, None] * (k[u, None] * np.abs(whirl[u])
+                                       + c[u, None] * wn[u, None] * np.abs(rate[u])))
+    rows[u, VINV_RE:VINV_RE + 64] = Vinv.real.reshape(u.size, 64)
+    rows[u, VINV_IM:VINV_IM + 64] = Vinv.imag.reshape(u.size, 64)
+    rows[u, QUASI_STATIC] = neutral[u].any(axis=1)
+    rows[u, ENABLED] = 1.0
+    return rows

@@ -202,8 +202,8 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     known (:mod:`settling`), else at ``criterion.t_end``.
 
     Runs are shuffled (seeded) so that long and short runs mix across threads, and processed in
-    chunks so that progress can be shown on stderr.  Failed runs are flagged in the ``status``
-    column, not raised: see :func:`check_batch`.
+    chunks of ``chunk`` so that progress can be shown on stderr (in one piece without it).
+    Failed runs are flagged in the ``status`` column, not raised: see :func:`check_batch`.
     """
     c = criterion
     params = np.ascontiguousarray(params, dtype=float)
@@ -217,6 +217,7 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     else:
         stops = np.broadcast_to(settling.disabled(), (n, settling.SIZE))
     result = np.empty((n, analysers.N_METRICS))
+    chunk = chunk if progress else n            # one parallel loop balances the threads best
     for start in range(0, n, chunk):
         idx = order[start:start + chunk]
         result[idx] = integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol, atol,
