@@ -24,7 +24,7 @@ COLUMN = {name: i for i, name in enumerate(METRICS)}
  _F_MAX_T, _F_T, _F_DONE, _R_LAST) = range(15)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def new_analysers():
     acc = np.full(15, np.nan)
     acc[_R_PREV] = acc[_R_PREV2] = acc[_PEAK_R] = -1.0
@@ -33,12 +33,12 @@ def new_analysers():
     return acc
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _crossing(t_a, v_a, t_b, v_b, level):
     return t_a + (v_a - level) / (v_a - v_b) * (t_b - t_a)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _stays_below(acc, i_time, i_flag, first, previous, value, t, threshold):
     """Time after which ``value`` stays below ``threshold``: the crossing after the last sample
     at or above it (flag 0 while it is above)."""
@@ -51,7 +51,7 @@ def _stays_below(acc, i_time, i_flag, first, previous, value, t, threshold):
         acc[i_flag] = 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def observe(acc, t, r, force, r_threshold, f_threshold):
     """Feed one sample ``(t, r, F)`` to the balance-time, envelope and force analysers."""
     first = acc[_R_PREV] < 0.0
@@ -73,19 +73,19 @@ def observe(acc, t, r, force, r_threshold, f_threshold):
     acc[_R_LAST] = r
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def answers_settled(acc):
     """Balance time, envelope time and force decay time all fixed unless a later sample rises
     above its threshold again."""
     return acc[_BAL] == 1.0 and acc[_ENV] == 1.0 and acc[_F_DONE] == 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def force_maximum(acc):
     return acc[_F_MAX]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def metrics_row(acc, status, steps, t_stop, r_threshold):
     """The metrics row (``METRICS``) of a run that ended at ``t_stop`` with ``status``."""
     # the envelope falls below the threshold after its last peak without a further peak

@@ -10,7 +10,7 @@ from rotorvib.models.balancer.dop853 import DOP853, integrate_dop853
 from rotorvib.models.balancer.engine import integrate
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, error_model="numpy")
 def integrate_batch(form, params, y0s, t_end, rtol, atol, sample_dt, r_threshold,
                     f_threshold, max_steps, stops, order, method, A, B, C, E3, E5, D):
     """Run the engine's ``integrate`` (``method`` DOPRI5) or ``integrate_dop853`` (DOP853,

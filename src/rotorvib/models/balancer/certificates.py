@@ -24,7 +24,7 @@ from rotorvib.models.balancer.settling import (
 STEP = 1e-3
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def balanced_jacobian(p_rot, alpha):
     """``J`` of the rotating form (parameters ``p_rot``, layout ``engine.P_ROT``, two balls) at
     the balanced state with the balls at ``+alpha, -alpha``, by the differences of the module
@@ -44,7 +44,7 @@ def balanced_jacobian(p_rot, alpha):
     return J
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _jacobians(groups, alphas):
     out = np.empty((groups.shape[0], 8, 8))
     for i in range(groups.shape[0]):

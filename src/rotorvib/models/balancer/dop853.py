@@ -15,7 +15,8 @@ from numba import njit
 
 from rotorvib.models.balancer.analysers import metrics_row, new_analysers
 from rotorvib.models.balancer.engine import (NON_FINITE, OK, all_finite, cannot_step,
-                                             initial_step, rhs, sample_into)
+                                             initial_step, rhs, sample_into,
+                                             sampled_components)
 from rotorvib.models.balancer.settling import CHECK_EVERY, settled
 
 DOPRI5, DOP853 = 0, 1
@@ -34,7 +35,7 @@ def tableau(method: int) -> tuple:
     return tuple(np.ascontiguousarray(x, dtype=float) for x in (c.A, c.B, c.C, c.E3, c.E5, c.D))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _dop853_stages(form, p, t, y, h, K, A, C, first, last, ytmp):
     """Stages ``first .. last - 1`` of DOP853 into the rows of ``K`` (row 0: f(t, y))."""
     ny = y.size
@@ -47,7 +48,7 @@ def _dop853_stages(form, p, t, y, h, K, A, C, first, last, ytmp):
         rhs(form, t + C[s] * h, ytmp, p, K[s])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _dop853_error(K, y, ynew, h, rtol, atol, E3, E5):
     """Hairer's error norm of DOP853: the order-5 estimate damped by the order-3 one."""
     ny = y.size
@@ -67,12 +68,12 @@ def _dop853_error(K, y, ynew, h, rtol, atol, E3, E5):
     return abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * ny)
 
 
-@njit(cache=True)
-def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp):
+@njit(cache=True, error_model="numpy")
+def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp, comps):
     """The seven coefficient rows ``F`` of DOP853's dense output over the step (after the three
-    extra stages)."""
+    extra stages), for the components ``comps``."""
     _dop853_stages(form, p, t, y, h, K, A, C, _N853 + 1, _N853_DENSE, ytmp)
-    for j in range(y.size):
+    for j in comps:
         dy = ynew[j] - y[j]
         F[0, j] = dy
         F[1, j] = h * K[0, j] - dy
@@ -84,18 +85,18 @@ def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp):
             F[3 + r, j] = h * acc
 
 
-@njit(cache=True)
-def _dop853_eval(theta, y, F, out):
-    """DOP853's dense output at ``t + theta h``."""
-    for j in range(y.size):
-        acc = 0.0
-        for i in range(F.shape[0] - 1, -1, -1):
-            acc += F[i, j]
-            acc *= theta if (F.shape[0] - 1 - i) % 2 == 0 else 1.0 - theta
-        out[j] = y[j] + acc
+@njit(cache=True, error_model="numpy")
+def _dop853_eval(theta, y, F, out, comps):
+    """DOP853's dense output at ``t + theta h``, components ``comps``: ``y + theta (F0 + theta'
+    (F1 + theta (F2 + theta' (F3 + theta (F4 + theta' (F5 + theta F6))))))``, ``theta' =
+    1 - theta``."""
+    t1 = 1.0 - theta
+    for j in comps:
+        out[j] = y[j] + theta * (F[0, j] + t1 * (F[1, j] + theta * (F[2, j] + t1 * (
+            F[3, j] + theta * (F[4, j] + t1 * (F[5, j] + theta * F[6, j]))))))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
                      max_steps, out, stop, A, B, C, E3, E5, D):
     """The engine's ``integrate`` with DOP853 (tableau from :func:`tableau`): the same
@@ -106,6 +107,7 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
     K = np.empty((_N853_DENSE, ny))
     F = np.empty((7, ny))
     ytmp, ynew, ys = np.empty(ny), np.empty(ny), np.empty(ny)
+    comps = sampled_components(ny, out)
     rhs(form, t0, y, p, K[0])
     acc = new_analysers()
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(K[0]))):
@@ -142,9 +144,9 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
             break
         t_new = t + h
         if t_sample <= t_new + 1e-12 * sample_dt:
-            _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp)
+            _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp, comps)
             while t_sample <= t_new + 1e-12 * sample_dt:
-                _dop853_eval(min((t_sample - t) / h, 1.0), y, F, ys)
+                _dop853_eval(min((t_sample - t) / h, 1.0), y, F, ys, comps)
                 sample_into(form, p, acc, out, j_sample, t_sample, ys, r_threshold, f_threshold)
                 j_sample += 1
                 t_sample = t0 + j_sample * sample_dt

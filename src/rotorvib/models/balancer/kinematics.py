@@ -19,7 +19,7 @@ CONSTANT, RUNUP = 0, 1
 PRINTED, CONSISTENT = 0, 1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def speed(t, omega, t_ramp, profile):
     """Return ``(w, w', w'', int_0^t w)`` of the speed profile at time ``t``."""
     if profile == CONSTANT or t >= t_ramp:
@@ -34,7 +34,7 @@ def speed(t, omega, t_ramp, profile):
     return w, wd, wdd, integral
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def disk_kinematics(t, p):
     """Disk angle, rate and acceleration ``(Phi, Phi', Phi'')`` for the FIXED form."""
     w, wd, wdd, integral = speed(t, p[8], p[9], int(p[10]))

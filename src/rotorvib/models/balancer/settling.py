@@ -74,12 +74,12 @@ class StopRule:
         return cls(margin=stop["margin"], check_dt=stop["check_dt"], neutral=neutral)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _wrap(a):
     return (a + np.pi) % (2.0 * np.pi) - np.pi
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def bounds(S, y, phi, phid):
     """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
     angle ``phi`` and rate ``phid``, measured from the nearer of the two balanced states."""
@@ -123,7 +123,7 @@ def bounds(S, y, phi, phid):
     return b_r, b_f
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def settled(S, p, acc, t, y, r_threshold, f_threshold):
     """True when the run at ``(t, y)`` (FIXED form, parameters ``p``, analyser state ``acc``)
     may stop: its metrics are settled and the bounds of the module docstring hold."""
