@@ -12,10 +12,12 @@ cached-compilation time of a fresh process.
 
     python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence | --stop]
 
-``--convergence`` prints the convergence study behind paper B's integrator
-(``paper_b.balance.integrator`` in the config): the errors of the balance, envelope and force
-decay times and of the peak force of the same run, both methods, rtol = 1e-6 ... 1e-10
-(atol = 1e-3 rtol), against DOP853 at rtol 1e-13.
+``--convergence`` prints the convergence study behind paper B's integrators
+(``paper_b.balance.integrator`` and the studies' own ``integrator`` in the config): the errors
+of the balance, envelope and force decay times and of the peak force of the same run, both
+methods, rtol = 1e-6 ... 1e-10 (atol = 1e-3 rtol), against DOP853 at rtol 1e-13; then the
+largest errors over a batch of ``--runs`` random run-ups (DOP853 with the stop rule, against
+rtol 1e-12) and the batch's time at each rtol against rtol 1e-7.
 
 ``--stop`` prints the evidence behind stopping runs early (``paper_b.balance.stop``): the batch
 of random run-ups with the configured integrator, with and without the stop rule, side by side:
@@ -188,6 +190,30 @@ def stop_study(p, y0, runs):
           f" after the balance time; metrics that differ: {differ} of {len(names) * runs}")
 
 
+def batch_convergence(p, y0, runs):
+    """Largest errors over a batch of random run-ups against DOP853 at rtol 1e-12, and the
+    batch's time, at each rtol (DOP853, stop rule of the config)."""
+    params, y0s = batch_inputs(p, y0, runs)
+
+    def batch(rtol):
+        return run_batch(engine.FIXED, params, y0s, CRITERION, method="dop853", rtol=rtol,
+                         atol=rtol * 1e-3, stop=SETUP.stop, progress=False)
+
+    ref = batch(1e-12)
+    times = {rtol: best_of(3, lambda: batch(rtol)) for rtol in (1e-7, 1e-6, 3e-6, 1e-5)}
+    print(f"\n{runs} random run-ups (DOP853, stop rule), largest errors against rtol 1e-12:")
+    print(f"{'rtol':>6} {'time':>6} {'balance (s)':>12} {'envelope (s)':>13} {'decay (s)':>10} "
+          f"{'peak (rel)':>11} {'censoring':>10}")
+    for rtol, (elapsed, out) in times.items():
+        errors = [np.nanmax(np.abs(metric(out, n) - metric(ref, n)))
+                  for n in ("balance_time", "envelope_time", "force_decay_time")]
+        peak = np.max(np.abs(metric(out, "force_max") / metric(ref, "force_max") - 1))
+        flips = int(np.sum(metric(out, "balanced") != metric(ref, "balanced")))
+        print(f"{rtol:6.0e} {elapsed / times[1e-7][0]:5.2f}x "
+              + " ".join(f"{e:{w}.1e}" for e, w in zip(errors, (12, 13, 10)))
+              + f" {peak:11.1e} {flips:10d}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=1000)
@@ -201,6 +227,7 @@ def main():
     p, y0 = case()
     if args.convergence:
         convergence(p, y0)
+        batch_convergence(p, y0, args.runs)
         return
     if args.stop:
         stop_study(p, y0, args.runs)
