@@ -12,8 +12,8 @@ cached-compilation time of a fresh process.
 
     python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence | --stop]
 
-``--convergence`` prints the convergence study behind paper B's integrators
-(``paper_b.balance.integrator`` and the studies' own ``integrator`` in the config): the errors
+``--convergence`` prints the convergence study behind paper B's integrator
+(``paper_b.balance.integrator`` in the config): the errors
 of the balance, envelope and force decay times and of the peak force of the same run, both
 methods, rtol = 1e-6 ... 1e-10 (atol = 1e-3 rtol), against DOP853 at rtol 1e-13; then the
 largest errors over a batch of ``--runs`` random run-ups (DOP853 with the stop rule, against

@@ -56,8 +56,6 @@ CASES = [
     ("paper_b.balance.integrator.method", "rk4", None),
     ("paper_b.balance.integrator.rtol", 1e-16, None),
     ("paper_b.balance.integrator.atol", 0, None),
-    ("paper_b.pareto.integrator.method", "euler", None),
-    ("paper_b.basin.integrator", {"method": "dop853", "rtol": 1e-6}, "paper_b.basin.integrator.atol"),
     ("paper_b.balance.stop.margin", 1.0, None), ("paper_b.balance.stop.check_dt", NAN, None),
     ("paper_b.balance.stop.check_dt", 1e-4, None),          # finer than the samples
     ("paper_b.balance.stop", {"margin": 0.5}, "paper_b.balance.stop.check_dt"),

@@ -252,11 +252,3 @@ def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
     mean = run_case(setup, [[0.1, 0.01, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
     assert mean["balance_time"][0] == pytest.approx(
         np.mean([direct(p).balance_time for p in ics["ics"]]), rel=1e-12)
-
-
-def test_a_study_may_choose_its_own_integrator(setup):
-    assert setup.with_integrator(None) is setup
-    own = setup.with_integrator({"method": "dopri5", "rtol": 1e-6, "atol": 1e-9})
-    assert own.tolerances == {"method": "dopri5", "rtol": 1e-6, "atol": 1e-9}
-    assert dataclasses.replace(own, method=setup.method, rtol=setup.rtol,
-                               atol=setup.atol) == setup

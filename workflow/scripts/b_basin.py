@@ -11,7 +11,6 @@ from rotorvib.papers.b.studies import basin_dataset
 sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)
 p = snakemake.params
-setup = Setup.from_config(**p.setup).with_integrator(p.basin.get("integrator"))
-ds = basin_dataset(setup, kinematics=p.kinematics, cases=p.basin["cases"], n=p.basin["n"],
-                   eps_bar=p.basin["eps_bar"], ics=p.ics)
+ds = basin_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=p.basin["cases"],
+                   n=p.basin["n"], eps_bar=p.basin["eps_bar"], ics=p.ics)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -12,8 +12,7 @@ sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)
 p = snakemake.params
 pa = p.pareto
-ds = pareto_dataset(Setup.from_config(**p.setup).with_integrator(pa.get("integrator")),
-                    kinematics=p.kinematics, eps_bar=pa["eps_bar"],
+ds = pareto_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, eps_bar=pa["eps_bar"],
                     speed=pa["speed"], beta_bounds=p.bounds["beta"], mass_bounds=p.bounds["mass"],
                     positions=pa["positions"], seed=pa["seed"], pop_size=pa["pop_size"],
                     n_gen=pa["n_gen"], censored_penalty=p.bounds["censored_penalty"],

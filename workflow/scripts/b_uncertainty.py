@@ -12,8 +12,7 @@ sys.stderr = open(snakemake.log[0], "w", buffering=1)
 use_threads(snakemake.threads)
 p = snakemake.params
 u = p.uncertainty
-ds = uncertainty_dataset(Setup.from_config(**p.setup).with_integrator(u.get("integrator")),
-                         case=p.case, ranges=u["ranges"],
+ds = uncertainty_dataset(Setup.from_config(**p.setup), case=p.case, ranges=u["ranges"],
                          kinematics=p.kinematics, n_base=u["n_base"],
                          convergence=u["convergence"], resamples=u["resamples"], seed=u["seed"])
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p), u["seed"]))

@@ -11,7 +11,7 @@ another operating ``speed``, race radius ``R`` or support damping ``zeta``), bal
 from __future__ import annotations
 
 import inspect
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -94,10 +94,6 @@ class Setup:
         """From the whole ``paper_b`` config section (the keys :meth:`from_config` takes)."""
         return cls.from_config(**{key: paper_b[key]
                                   for key in inspect.signature(cls.from_config).parameters})
-
-    def with_integrator(self, integrator: dict | None) -> "Setup":
-        """This setup with a study's own ``{method, rtol, atol}`` (None: unchanged)."""
-        return self if integrator is None else replace(self, **integrator)
 
     @property
     def tolerances(self) -> dict:
