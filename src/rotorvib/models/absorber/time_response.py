@@ -28,15 +28,16 @@ def _set_arrays(sets):
     return tuple(np.array([getattr(s, name) for s in sets], dtype=float) for name in "mkcd")
 
 
-def rhs_nonlinear(t, y, rotor: Rotor, sets, omega):
-    m, k, c, d = _set_arrays(sets)
+def rhs_nonlinear(t, y, J, k_t, gamma0, m, k, c, d, omega):
+    """Eqs (8)-(10) for the disk (``J``, ``k_t``, forcing amplitude ``gamma0``) and the sets'
+    arrays ``m, k, c, d`` (see the module docstring)."""
     n = len(m)
     theta, u = y[0], y[1:n + 1]
     dtheta, du = y[n + 1], y[n + 2:]
-    gamma = rotor.Gamma0 * np.cos(omega * t)
+    gamma = gamma0 * np.cos(omega * t)
     f = m * u * dtheta**2 - 2 * c * du - 2 * k * u          # = m_j (u_j'' + d_j theta'')
-    inertia = rotor.J + np.sum(2 * m * u**2)
-    ddtheta = (gamma - rotor.k_t * theta - np.sum(4 * m * u * du) * dtheta
+    inertia = J + np.sum(2 * m * u**2)
+    ddtheta = (gamma - k_t * theta - np.sum(4 * m * u * du) * dtheta
                - np.sum(2 * d * f)) / inertia
     ddu = f / m - d * ddtheta
     return np.concatenate(([dtheta], du, [ddtheta], ddu))
@@ -59,7 +60,8 @@ def simulate(rotor: Rotor, sets, omega: float, t, *, model: str = "nonlinear",
     n = 1 + len(sets)
     y0 = np.zeros(2 * n)
     if model == "nonlinear":
-        y = integrate(rhs_nonlinear, y0, t, rtol=rtol, atol=atol, args=(rotor, sets, omega))
+        y = integrate(rhs_nonlinear, y0, t, rtol=rtol, atol=atol,
+                      args=(rotor.J, rotor.k_t, rotor.Gamma0, *_set_arrays(sets), omega))
     elif model == "linear":
         M, C, K = matrices(rotor, sets)
         y = integrate(rhs_linear, y0, t, rtol=rtol, atol=atol,
