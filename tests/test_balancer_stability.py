@@ -33,6 +33,28 @@ def test_symbolic_linearisation_matches_compiled_rhs(case):
     np.testing.assert_allclose(J, finite_difference_jacobian(**case), atol=1e-6)
 
 
+def test_the_disk_phase_cancels_from_the_rotating_frame_equations():
+    """Lagrange's equations carry no sin or cos of the phase W tau, and equal the expressions
+    straight from the energies (phase and all) at random states, parameters and times."""
+    phase = stability.OMEGA * stability.TAU
+    q, eqs = stability.rotating_lagrange_equations()
+    _, raw = stability.lagrange_expressions()
+    assert not any(e.has(sp.sin(phase)) or e.has(sp.cos(phase)) for e in eqs)
+    rng = np.random.default_rng(2)
+    for _ in range(3):
+        point = {sp.diff(f, stability.TAU, 2): rng.uniform(-1, 1) for f in q}
+        point.update({sp.diff(f, stability.TAU): rng.uniform(-1, 1) for f in q})
+        values = {f: rng.uniform(-3, 3) for f in q}
+        params = dict(zip(stability.PARAMETERS, rng.uniform(0.05, 2.0, 5)))
+        params[stability.TAU] = rng.uniform(0, 10)
+
+        def at(e):
+            return float(e.subs(point).subs(values).subs(params))
+
+        for e, r in zip(eqs, raw):
+            assert at(e) == pytest.approx(at(r), rel=1e-12, abs=1e-12)
+
+
 def test_constant_term_changes_sign_at_rho_one_half():
     c0 = sp.factor(stability.characteristic_polynomial().coeff_monomial(1))
     assert sp.simplify(c0 - stability.OMEGA**8 * stability.MU**4 * (4 * stability.RHO**2 - 1)
