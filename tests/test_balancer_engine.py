@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import ode, solve_ivp
 
 from rotorvib.models.balancer import dop853, engine, settling
-from rotorvib.models.balancer.batch import integrate_batch
+from rotorvib.models.balancer.batch import batch_dopri5
 from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
                                                  fixed_parameters, fixed_state, rotating_parameters)
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
@@ -174,10 +174,9 @@ def test_failures_are_reported():
     with pytest.raises(ValueError, match="p: non-finite"):
         run(engine.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
     # ... and the engine itself flags a failed run in its batch instead of returning numbers
-    metrics = integrate_batch(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]),
-                              0.5, 1e-8, 1e-11, 1e-3, R_THR, F_THR, MAX_STEPS,
-                              np.stack([settling.disabled()] * 2), np.arange(2),
-                              dop853.DOPRI5, *dop853.tableau(dop853.DOPRI5))
+    metrics = batch_dopri5(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]),
+                           0.5, 1e-8, 1e-11, 1e-3, R_THR, F_THR, MAX_STEPS,
+                           np.stack([settling.disabled()] * 2), np.arange(2))
     assert metrics[0, 0] == engine.OK and metrics[1, 0] != engine.OK
     with pytest.raises(IntegrationError, match="1 of 2"):
         check_batch(metrics)

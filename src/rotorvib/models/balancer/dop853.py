@@ -24,12 +24,10 @@ METHODS = {"dopri5": DOPRI5, "dop853": DOP853}
 _N853, _N853_DENSE = 12, 16
 
 
-@lru_cache(maxsize=None)
-def tableau(method: int) -> tuple:
-    """``(A, B, C, E3, E5, D)`` of DOP853 as contiguous float arrays; empty ones for DOPRI5,
-    whose coefficients are compiled in."""
-    if method != DOP853:
-        return (np.zeros((0, 0)), *(np.zeros(0) for _ in range(4)), np.zeros((0, 0)))
+@lru_cache(maxsize=1)
+def tableau() -> tuple:
+    """``(A, B, C, E3, E5, D)`` of DOP853 as contiguous float arrays (DOPRI5's coefficients are
+    compiled in)."""
     from scipy.integrate._ivp import dop853_coefficients as c
 
     return tuple(np.ascontiguousarray(x, dtype=float) for x in (c.A, c.B, c.C, c.E3, c.E5, c.D))

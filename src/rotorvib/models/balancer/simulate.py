@@ -14,7 +14,7 @@ import numpy as np
 
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.models.balancer import analysers, dop853, engine, settling
-from rotorvib.models.balancer.batch import integrate_batch
+from rotorvib.models.balancer.batch import batch_dop853, batch_dopri5
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
@@ -160,7 +160,7 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     out = np.empty((c.n_samples if store else 0, len(y0)))
     args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
             c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out, settling.disabled())
-    m = (dop853.integrate_dop853(*args, *dop853.tableau(code)) if code == dop853.DOP853
+    m = (dop853.integrate_dop853(*args, *dop853.tableau()) if code == dop853.DOP853
          else engine.integrate(*args))
     _raise_on_failure(m)
     result = RunResult.from_metrics(m, c.t_end)
@@ -220,10 +220,11 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     chunk = chunk if progress else n            # one parallel loop balances the threads best
     for start in range(0, n, chunk):
         idx = order[start:start + chunk]
-        result[idx] = integrate_batch(form, params[idx], y0s[idx], float(c.t_end), rtol, atol,
-                                      c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS,
-                                      np.ascontiguousarray(stops[idx]),
-                                      np.arange(len(idx)), code, *dop853.tableau(code))
+        args = (form, params[idx], y0s[idx], float(c.t_end), rtol, atol, c.sample_dt,
+                c.r_threshold, c.f_threshold, MAX_STEPS, np.ascontiguousarray(stops[idx]),
+                np.arange(len(idx)))
+        result[idx] = (batch_dop853(*args, *dop853.tableau()) if code == dop853.DOP853
+                       else batch_dopri5(*args))
         if progress and n > chunk:
             done = min(start + chunk, n)
             print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
