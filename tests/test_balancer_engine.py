@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import ode, solve_ivp
 
-from rotorvib.models.balancer import dop853, engine, settling
+from rotorvib.models.balancer import engine, settling
 from rotorvib.models.balancer.batch import batch_dopri5
 from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
                                                  fixed_parameters, fixed_state, rotating_parameters)
