@@ -16,6 +16,7 @@ from numba import njit
 
 from rotorvib.models.balancer.engine import rhs_rotating
 from rotorvib.models.balancer.kinematics import CONSTANT
+from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, rotating_parameters
 from rotorvib.models.balancer.settling import (
     ALPHA, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
     QUASI_STATIC, RADIUS, SIZE, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N, WEIGHT_F, WEIGHT_R,
@@ -66,10 +67,9 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     rows = np.zeros((len(unique), SIZE))
     i = np.flatnonzero(ok)
     if i.size:
-        groups = np.column_stack([      # paper A's groups, layout engine.P_ROT
-            m[i] / mt[i], m[i] * R[i] / (M[i] * eps[i]), c[i] / (2 * np.sqrt(k[i] * mt[i])),
-            D[i] / (m[i] * R[i]**2 * wn[i]), np.full(i.size, 2.0), W[i], np.ones(i.size),
-            np.full(i.size, float(CONSTANT))])
+        groups = np.array([rotating_parameters(   # paper A's groups at the operating speed
+            Balancer(M=M[j], m=m[j], R=R[j], eps=eps[j], k=k[j], c=c[j], D=D[j]).dimensionless(),
+            SpeedProfile(W[j])) for j in i])
         rows[i] = _modal_rows(_jacobians(groups, alpha[i]), R[i], k[i], c[i], wn[i], W[i], rule)
     rows[:, T_FROM] = np.where(profile == CONSTANT, 0.0, t_ramp)   # constant speed from there
     rows[:, W_N], rows[:, ALPHA] = wn, alpha
