@@ -19,7 +19,7 @@ include: "workflow/rules/archive.smk"
 
 
 # The report's landing page is written from the comparison by rule report_text (report.smk).
-report: REPORT_TEXT["landing"]
+report: REPORT_LANDING
 
 
 rule all:

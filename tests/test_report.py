@@ -83,18 +83,14 @@ def test_a_caption_states_each_row_with_its_verdict_and_renders_cleanly():
     assert "states" not in html(report.caption("t", "shows"))
 
 
-def test_the_figure_template_gives_each_figure_its_own_caption():
-    template = report.figure_captions_template({("b", "fig8"): "Eight {{ x }} {% y %}",
-                                                ("a", "fig2"): "Two"})
+def test_a_caption_file_renders_as_written(tmp_path):
+    """Snakemake renders each caption file as a Jinja template: the text comes out verbatim,
+    braces included."""
+    text = report.caption("Paper B, Fig 8", "Eight {{ x }} {% y %} {# z #}", [])
+    report.write_caption(tmp_path / "fig8.rst", text)
     env = jinja2.Environment(trim_blocks=True, lstrip_blocks=True)  # as Snakemake's
-
-    def render(paper, name):
-        snakemake = type("S", (), {"wildcards": type("W", (), {"paper": paper, "name": name})})
-        return env.from_string(template).render(snakemake=snakemake).strip()
-
-    assert render("b", "fig8") == "Eight {{ x }} {% y %}"  # raw: no Jinja inside a caption
-    assert render("a", "fig2") == "Two"
-    assert render("c", "fig2").startswith("No caption was written")
+    rendered = env.from_string((tmp_path / "fig8.rst").read_text()).render(snakemake=None)
+    assert rendered == text
 
 
 def test_the_landing_page_totals_and_findings_follow_the_rows():

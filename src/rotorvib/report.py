@@ -127,19 +127,6 @@ def check_counts(rows: list[dict]) -> str:
     return " Checks: " + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())) + "."
 
 
-def figure_captions_template(captions: dict[tuple[str, str], str]) -> str:
-    """One Jinja2 template holding every figure caption, choosing by the job's wildcards
-    ``paper`` and ``name``; the captions themselves are raw (no Jinja inside)."""
-    parts = ['{% set key = snakemake.wildcards.paper ~ "/" ~ snakemake.wildcards.name %}']
-    for number, ((paper, name), text) in enumerate(sorted(captions.items())):
-        keyword = "if" if number == 0 else "elif"
-        parts += [f'{{% {keyword} key == "{paper}/{name}" %}}', "{% raw %}", text.rstrip(),
-                  "{% endraw %}"]
-    parts += ["{% else %}", "No caption was written for this figure: rerun the rule report_text.",
-              "{% endif %}"]
-    return "\n".join(parts) + "\n"
-
-
 def verdict_counts(table: list[dict]) -> dict[str, Counter]:
     """Verdict counts per paper."""
     counts: dict[str, Counter] = {}
@@ -213,3 +200,9 @@ def landing_page(table: list[dict], claims: dict[tuple[str, str], str], papers: 
 def write(path: str | Path, text: str) -> None:
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     Path(path).write_text(text, encoding="utf-8")
+
+
+def write_caption(path: str | Path, text: str) -> None:
+    """Write a caption file: Snakemake renders captions as Jinja templates, so the text is one
+    raw block, shown as written whatever braces it holds."""
+    write(path, "{% raw %}" + text.rstrip() + "\n{% endraw %}\n")

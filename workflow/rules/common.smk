@@ -32,10 +32,7 @@ except ConfigError as error:
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
 PAPER_VALUES = "data/paper_values.csv"
 REPORT_DIR = "results/report"
-REPORT_TEXT = {
-    "landing": f"{REPORT_DIR}/landing.rst",
-    "figure_captions": f"{REPORT_DIR}/figure_captions.rst",
-}
+REPORT_LANDING = f"{REPORT_DIR}/landing.rst"
 
 
 def dataset(paper, name):
@@ -59,7 +56,7 @@ def benchmarks(name):
     return f"results/benchmarks/{name}.tsv"
 
 
-# Figures of each paper, filled by the paper's .smk and drawn by the `figure` job (figures.smk);
+# Figures of each paper, filled by the paper's .smk and drawn by the figure jobs (figures.smk);
 # FIGURES[paper][name] names the drawing function of rotorvib.papers.<paper>.figures, the
 # datasets it reads (argument -> dataset name), what it shows (the first sentence of its
 # report caption, rotorvib.report), the comparison items it shows beyond those its name
@@ -88,7 +85,7 @@ def report_table(paper, name, shows, items=()):
     ``report()`` flag's arguments: its generated caption, category and labels."""
     TABLES.setdefault(paper, {})[name] = {"shows": shows, "items": list(items)}
     return {
-        "caption": f"../../{table_caption(paper, name)}",
+        "caption": f"../../{caption_file(paper, name, 'table')}",
         "category": "Comparison" if paper == "all" else f"Paper {paper.upper()}",
         "subcategory": None if paper == "all" else "Tables",
         "labels": report_labels(TABLES[paper], name, "table"),
@@ -103,15 +100,21 @@ def report_labels(declared, name, kind):
     return {"#": order_key(name, others), kind: label(name, kind)}
 
 
-def table_caption(paper, name):
-    """The generated caption file of a table (rule report_text)."""
-    return f"{REPORT_DIR}/captions/{paper}_{name}.rst"
+def caption_file(paper, name, kind):
+    """The generated caption file of a figure or table (rule report_text)."""
+    return f"{REPORT_DIR}/captions/{kind}s/{paper}_{name}.rst"
 
 
-def figure_inputs(wildcards):
-    """The datasets a figure reads, by the argument name of its drawing function."""
-    declared = FIGURES[wildcards.paper][wildcards.name]["datasets"]
-    return {arg: dataset(wildcards.paper, name) for arg, name in declared.items()}
+def figure_groups():
+    """The figures of each paper grouped by the datasets they read, in declaration order:
+    ``{(paper, dataset names): [figure names]}``. One job draws a group (figures.smk).
+    """
+    groups = {}
+    for paper, figures in FIGURES.items():
+        for name, declared in figures.items():
+            key = (paper, tuple(sorted(set(declared["datasets"].values()))))
+            groups.setdefault(key, []).append(name)
+    return groups
 
 
 # Final files of each paper, filled by the paper's .smk.
@@ -134,11 +137,16 @@ def all_results():
 
 def report_text_files():
     """The report's landing page and the captions of every figure and table."""
-    return list(REPORT_TEXT.values()) + table_captions()
+    return [REPORT_LANDING] + captions(FIGURES, "figure") + captions(TABLES, "table")
 
 
-def table_captions():
-    return [table_caption(paper, name) for paper in TABLES for name in TABLES[paper]]
+def captions(declared, kind):
+    """The caption files of the ``declared`` figures or tables of every paper."""
+    return [
+        caption_file(paper, name, kind)
+        for paper in declared
+        for name in declared[paper]
+    ]
 
 
 def results_of(paper, datasets, tables=()):

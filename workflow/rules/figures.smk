@@ -1,30 +1,43 @@
-# Every figure of every paper: one rule, driven by the FIGURES declarations of the papers' .smk
-# files. A figure reads datasets only (and the papers' values); nothing is recomputed here.
+# Every figure of every paper, driven by the FIGURES declarations of the papers' .smk files. The
+# figures of a paper that read the same datasets are drawn by one job, in one process (its
+# imports, about a second, are paid once): a change to those datasets redraws all of them in
+# any case, and a figure alone is still built or redrawn by naming its file. A figure reads
+# datasets only (and the papers' values); nothing is recomputed here.
 
+for (_paper, _datasets), _names in figure_groups().items():
 
-rule figure:
-    input:
-        unpack(figure_inputs),
-        paper_values=PAPER_VALUES,
-    output:
-        report(
-            "results/paper_{paper}/figures/{name}.png",
-            caption=f"../../{REPORT_TEXT['figure_captions']}",
-            category=lambda wc: f"Paper {wc.paper.upper()}",
-            subcategory="Figures",
-            labels=lambda wc: report_labels(FIGURES[wc.paper], wc.name, "figure"),
-        ),
-    log:
-        logs("figure_{paper}_{name}"),
-    wildcard_constraints:
-        paper="|".join(FIGURES),
-    # Reads datasets only: runs where Snakemake runs, never as a cluster job.
-    localrule: True
-    params:
-        module=lambda wc: f"rotorvib.papers.{wc.paper}.figures",
-        function=lambda wc: FIGURES[wc.paper][wc.name]["function"],
-        options=lambda wc: FIGURES[wc.paper][wc.name]["options"],
-    message:
-        "Paper {wildcards.paper}: drawing figure {wildcards.name}"
-    script:
-        "../scripts/figure.py"
+    rule:
+        name:
+            f"figures_{_paper}_{'_'.join(_datasets)}"
+        input:
+            **{name: dataset(_paper, name) for name in _datasets},
+            paper_values=PAPER_VALUES,
+        output:
+            **{
+                name: report(
+                    figure_file(_paper, name),
+                    caption=f"../../{caption_file(_paper, name, 'figure')}",
+                    category=f"Paper {_paper.upper()}",
+                    subcategory="Figures",
+                    labels=report_labels(FIGURES[_paper], name, "figure"),
+                )
+                for name in _names
+            },
+        log:
+            logs(f"figures_{_paper}_{'_'.join(_datasets)}"),
+        # Reads datasets only: runs where Snakemake runs, never as a cluster job.
+        localrule: True
+        params:
+            paper=_paper,
+            module=f"rotorvib.papers.{_paper}.figures",
+            figures={
+                name: {
+                    key: FIGURES[_paper][name][key]
+                    for key in ("function", "datasets", "options")
+                }
+                for name in _names
+            },
+        message:
+            f"Paper {_paper.upper()}: drawing {', '.join(_names)} from {', '.join(_datasets)}"
+        script:
+            "../scripts/figures.py"

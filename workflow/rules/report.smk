@@ -16,9 +16,9 @@ rule report_text:
             for name in TABLES[paper]
         ],
     output:
-        landing=REPORT_TEXT["landing"],
-        figure_captions=REPORT_TEXT["figure_captions"],
-        table_captions=table_captions(),
+        landing=REPORT_LANDING,
+        figure_captions=captions(FIGURES, "figure"),
+        table_captions=captions(TABLES, "table"),
     log:
         logs("report_text"),
     # Reads tables only: runs where Snakemake runs, never as a cluster job.

@@ -21,16 +21,17 @@ claims = {(row["paper"], row["quantity"]): row["claim"] for row in rows(snakemak
 tables = {Path(path).parent.parent.name.removeprefix("paper_") + "/" + Path(path).stem: rows(path)
           for path in snakemake.input.tables}
 out = snakemake.output
-caption_files = {Path(path).stem: path for path in out.table_captions}
+figure_captions = {Path(path).stem: path for path in out.figure_captions}
+table_captions = {Path(path).stem: path for path in out.table_captions}
 
 report.write(out.landing, report.landing_page(
     table, claims, load_yaml(snakemake.input.papers),
     discrepancy.totals_of_rows(discrepancies)))
-report.write(out.figure_captions, report.figure_captions_template({
-    (paper, name): report.caption(f"Paper {paper.upper()}, {report.label(name)}", entry["shows"],
-                                  report.rows_for(table, paper, name, "figure", tuple(entry["items"])),
-                                  claims)
-    for paper, figures in snakemake.params.figures.items() for name, entry in figures.items()}))
+for paper, figures in snakemake.params.figures.items():
+    for name, entry in figures.items():
+        report.write_caption(figure_captions[f"{paper}_{name}"], report.caption(
+            f"Paper {paper.upper()}, {report.label(name)}", entry["shows"],
+            report.rows_for(table, paper, name, "figure", tuple(entry["items"])), claims))
 for paper, entries in snakemake.params.tables.items():
     for name, entry in entries.items():
         if paper == "all":  # the comparison and the discrepancy analysis: their totals
@@ -42,4 +43,4 @@ for paper, entries in snakemake.params.tables.items():
                 f"Paper {paper.upper()}, {report.label(name, 'table')}",
                 entry["shows"] + report.check_counts(tables.get(f"{paper}/{name}", [])),
                 report.rows_for(table, paper, name, "table", tuple(entry["items"])), claims)
-        report.write(caption_files[f"{paper}_{name}"], text)
+        report.write_caption(table_captions[f"{paper}_{name}"], text)
