@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from rotorvib.methods.integrate import IntegrationError, integrate
-from rotorvib.models.absorber.frequency_response import steady_state
-from rotorvib.models.absorber.time_response import linear_response, simulate
+from rotorvib.models.absorber.frequency_response import matrices, steady_state
+from rotorvib.models.absorber.time_response import (linear_response, rhs_linear, rhs_nonlinear,
+                                                    simulate)
 
 
 def test_bare_rotor_at_resonance_matches_the_exact_solution(rotor):
@@ -66,3 +67,17 @@ def test_exact_linear_response_equals_the_integrated_one(rotor, table2):
         scale = np.abs(ode).max(axis=0)                 # per coordinate: rad, m, m
         np.testing.assert_allclose(exact / scale, ode / scale, rtol=0, atol=1e-8)
         np.testing.assert_allclose(exact[0], 0.0, atol=1e-15)
+
+
+def test_without_absorber_the_nonlinear_equations_are_the_linear_ones(rotor):
+    """With no set, (8)-(10) reduce to (14), J theta'' + k_t theta = Gamma: the time-response
+    study integrates that case once for both models."""
+    M, C, K = matrices(rotor, ())
+    empty = np.array([])
+    for t, y in zip(np.random.default_rng(0).uniform(0, 1, 5),
+                    np.random.default_rng(1).normal(size=(5, 2))):
+        np.testing.assert_allclose(
+            rhs_nonlinear(t, y, rotor.J, rotor.k_t, rotor.Gamma0, empty, empty, empty, empty,
+                          rotor.omega_n),
+            rhs_linear(t, y, np.linalg.inv(M), C, K, rotor.Gamma0, rotor.omega_n),
+            rtol=1e-14, atol=0)

@@ -20,7 +20,7 @@ from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
                                                          steady_state, theta_eq20)
 from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
                                                  dual_to_vector, effective_mass_ratio, undamped)
-from rotorvib.models.absorber.time_response import (response_times, simulate,
+from rotorvib.models.absorber.time_response import (linear_response, response_times, simulate,
                                                     undamped_resonance_envelope)
 from rotorvib.models.absorber.tuning import CONSTRUCTIONS, den_hartog_single, mass_ratio_family
 from rotorvib.papers.c.optimise import design_bounds
@@ -195,6 +195,16 @@ def distance_dataset(rotor: Rotor, table2, offsets, w) -> xr.Dataset:
     )
 
 
+def _linear_and_nonlinear(rotor: Rotor, sets, t, rtol: float, atol: float) -> np.ndarray:
+    """Responses from rest at resonance, ``[linear (14), nonlinear (8)-(10)]``: (14) solved
+    exactly (:func:`linear_response`) for a damped design, (8)-(10) integrated; without
+    absorber the two are one equation, ``J theta'' + k_t theta = Gamma``, integrated once
+    (undamped at resonance, it has no steady state for the exact solution to use)."""
+    nonlinear = simulate(rotor, sets, rotor.omega_n, t, rtol=rtol, atol=atol)
+    linear = linear_response(rotor, sets, rotor.omega_n, t) if sets else nonlinear
+    return np.stack([linear, nonlinear])
+
+
 def time_response_dataset(rotor: Rotor, table2, d_single: float, *, t_end: float,
                           samples_per_period: int, rtol: float, atol: float) -> xr.Dataset:
     """Figs 3, 4, 7: responses from rest to Gamma0 cos(omega_n t), linear (14) and nonlinear
@@ -203,11 +213,9 @@ def time_response_dataset(rotor: Rotor, table2, d_single: float, *, t_end: float
     t = response_times(rotor.omega_n, t_end, samples_per_period)
     single = den_hartog_single(rotor, m=table2[0].m + table2[1].m, d=d_single)
     cases = {"none": (), "single": (single,), "dual": tuple(table2)}
-    models = ("linear", "nonlinear")
     data = {}
     for case, sets in cases.items():
-        q = np.stack([simulate(rotor, sets, rotor.omega_n, t, model=m, rtol=rtol, atol=atol)
-                      for m in models])
+        q = _linear_and_nonlinear(rotor, sets, t, rtol, atol)
         data[f"theta_{case}"] = (("model", "t"), q[..., 0],
                                  {"long_name": f"disk twist angle theta, absorber: {case}",
                                   "units": "rad"})
@@ -227,7 +235,10 @@ def time_response_dataset(rotor: Rotor, table2, d_single: float, *, t_end: float
         coords={"t": ("t", t, {"long_name": "time since the start of the forcing", "units": "s"}),
                 "model_name": ("model", np.array(["linear eq. (14)", "nonlinear eqs. (8)-(10)"],
                                                  dtype=object),
-                               {"long_name": "equations integrated"})},
+                               {"long_name": "equations solved",
+                                "comment": "eq. (14) in closed form with an absorber, "
+                                           "integrated without one (where it is (8)-(10)); "
+                                           "(8)-(10) integrated (DOP853)"})},
         attrs={"title": "Paper C: forced time responses at resonance",
                "summary": "theta(t) and absorber displacements from rest under Gamma0 "
                           "cos(omega_n t): no absorber, Den Hartog single absorber, Table 2 dual "
