@@ -35,6 +35,12 @@ RECORDS = "job_records"
 
 
 def _copy_repository(dest: Path) -> Path:
+    """The repository's files (as git lists them) and the package's compiled caches: numba's
+    and the sympy code generator's, in ``src/**/__pycache__``, each valid only for its sources
+    (rotorvib.methods.numba_cache, rotorvib.methods.codegen). The library's own tests compile
+    them in the working tree; copied, the workflow runs here do not compile them again."""
+    for cache in (ROOT / "src").rglob("__pycache__"):
+        shutil.copytree(cache, dest / cache.relative_to(ROOT), dirs_exist_ok=True)
     listed = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"],
                             cwd=ROOT, capture_output=True, text=True)
     if listed.returncode == 0:
