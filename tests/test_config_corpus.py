@@ -93,7 +93,7 @@ CASES = [
     ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),
     ("paper_a.tau_step", 200.0, None), ("paper_a.zoom", [0.0, 500.0], None),
     ("paper_a.zoom", [20.0, 0.0], None), ("paper_a.rk.rtol", 1e-16, None),
-    ("paper_a.rk.rtol", "1e-9", None), ("paper_a.error_study.deltas", [0.01, 0.01], None),
+    ("paper_a.rk.rtol", "1e-9", None), ("paper_a.rk.method", "rk4", None), ("paper_a.error_study.deltas", [0.01, 0.01], None),
     ("paper_a.fig7.beta.n", 1.0e7, None), ("paper_a.fig5_6.betas", [-1.0], "paper_a.fig5_6.betas.0"),
     ("paper_a.slow_flow.omega", RANGE_DOWN, None),
     # discrepancy analysis

@@ -40,7 +40,8 @@ def solutions(mu, rho, zeta, beta, omega, x0, tau, rk):
     ms = MultipleScales.at(*taylor_at(mu, rho, zeta, beta, omega, z))
     p = rotating_parameters(Dimensionless(mu, rho, zeta, beta), SpeedProfile(omega, "constant"))
     step = tau[1] - tau[0]
-    traj = run(engine.ROTATING, p, z + x0, BalanceCriterion(1e-12, 1e-12, float(tau[-1]), step), rtol=rk["rtol"], atol=rk["atol"], store=True)
+    traj = run(engine.ROTATING, p, z + x0, BalanceCriterion(1e-12, 1e-12, float(tau[-1]), step),
+               method=rk["method"], rtol=rk["rtol"], atol=rk["atol"], store=True)
     out = np.stack([traj.y[:len(tau)] - z, ms.one_term(x0, tau), ms.two_term(x0, tau)])
     return out, ms
 
