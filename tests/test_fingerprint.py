@@ -4,8 +4,9 @@ import textwrap
 
 import pytest
 
-from rotorvib.io.fingerprint import (code_fingerprint, import_closure, imported_names,
-                                     normalised_source)
+from rotorvib.io import fingerprint as fingerprints
+from rotorvib.io.fingerprint import (behaviour_digest, code_fingerprint, import_closure,
+                                     imported_names, normalised_source)
 
 
 def write(root, name, text):
@@ -85,3 +86,30 @@ def test_normalised_source_keeps_string_constants_that_are_not_docstrings():
     assert normalised_source('x = "a"\n') != normalised_source('x = "b"\n')
     assert normalised_source('def f():\n    """doc"""\n    return 1\n') == \
         normalised_source("def f():\n    return 1\n")
+
+
+def test_the_memo_serves_later_processes_and_a_damaged_entry_is_recomputed(tree, tmp_path,
+                                                                           monkeypatch):
+    """A process with an empty in-process cache takes every module's imports and digest from the
+    memo on disk (parsing nothing) and gets the same fingerprint; damaged entries are computed
+    again."""
+    monkeypatch.setattr(fingerprints, "MEMO", tmp_path / "memo")
+
+    def in_a_new_process():
+        imported_names.cache_clear()
+        behaviour_digest.cache_clear()
+        return fingerprint(tree)
+
+    first = in_a_new_process()
+    entries = sorted((tmp_path / "memo").glob("*.json"))
+    assert entries
+
+    def parse(*_):
+        raise AssertionError("parsed although the memo holds the answer")
+
+    with monkeypatch.context() as patched:
+        patched.setattr(fingerprints.ast, "parse", parse)
+        assert in_a_new_process() == first
+    for entry in entries:
+        entry.write_text("{damaged")
+    assert in_a_new_process() == first

@@ -10,16 +10,40 @@ hand: a new import is a new dependency.
 
 Modules a script loads by name at run time (``importlib.import_module(params.module)``) are not
 visible in its source; the rule passes them as extra entry points.
+
+Parsing every module costs about half a second, paid by every ``snakemake`` command: a module's
+imports and the digest of its normalised tree are kept in a memo (``__pycache__/fingerprints``
+beside this module), keyed by the module's text, this module's own code and Python's version,
+so an entry never outlives what it was computed from.
 """
 
 from __future__ import annotations
 
 import ast
 import hashlib
+import json
+import sys
 from functools import lru_cache
 from pathlib import Path
 
+from rotorvib.io.cache_files import write_atomic
+
 PACKAGE = "rotorvib"
+#: The memo's folder, and what its entries depend on besides a module's text.
+MEMO = Path(__file__).parent / "__pycache__" / "fingerprints"
+_MEMO_VERSION = hashlib.sha256(Path(__file__).read_bytes() + sys.version.encode()).hexdigest()
+
+
+def _memo(kind: str, text: str, compute):
+    """``compute()`` (a JSON value) for ``text``, from the memo when an entry exists."""
+    key = hashlib.sha256("\0".join((_MEMO_VERSION, kind, text)).encode()).hexdigest()
+    path = MEMO / f"{key[:32]}.json"
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        value = compute()
+        write_atomic(path, json.dumps(value))
+        return value
 
 
 def module_file(name: str, root: Path) -> Path | None:
@@ -50,8 +74,13 @@ def imported_names(source: str, importer: str | None = None,
 
     ``from a.b import c`` yields ``a.b`` and ``a.b.c`` (``c`` may be a submodule); names that are
     not modules are dropped by the caller when no source file exists for them.  Memoised on the
-    source text: the workflow asks for the same modules' imports once per rule.
+    source text, in the process and on disk.
     """
+    return frozenset(_memo(f"imports {importer} {is_package}", source,
+                           lambda: sorted(_imported_names(source, importer, is_package))))
+
+
+def _imported_names(source: str, importer: str | None, is_package: bool) -> set[str]:
     names = set()
     for node in ast.walk(ast.parse(source)):
         if isinstance(node, ast.Import):
@@ -101,19 +130,25 @@ def _strip_docstrings(tree: ast.AST) -> ast.AST:
     return tree
 
 
-@lru_cache(maxsize=None)
 def normalised_source(source: str) -> str:
     """The syntax tree of ``source`` without docstrings and positions, as text: equal for two
-    sources that differ only in comments, docstrings or layout (memoised on the text)."""
+    sources that differ only in comments, docstrings or layout."""
     return ast.dump(_strip_docstrings(ast.parse(source)), include_attributes=False)
 
 
 @lru_cache(maxsize=None)
+def behaviour_digest(source: str) -> str:
+    """SHA-256 of :func:`normalised_source` (memoised on the text, in the process and on disk)."""
+    return _memo("behaviour", source,
+                 lambda: hashlib.sha256(normalised_source(source).encode()).hexdigest())
+
+
+@lru_cache(maxsize=None)
 def code_fingerprint(*entries: str, root: str = "src") -> str:
-    """SHA-256 over the normalised source of every module in ``import_closure(*entries)``."""
+    """SHA-256 over the names and :func:`behaviour_digest` of every module in
+    ``import_closure(*entries)``."""
     digest = hashlib.sha256()
     for name in import_closure(*entries, root=root):
-        digest.update(name.encode() + b"\0")
         text = module_file(name, Path(root)).read_text(encoding="utf-8")
-        digest.update(normalised_source(text).encode() + b"\0")
+        digest.update(f"{name}\0{behaviour_digest(text)}\0".encode())
     return digest.hexdigest()

@@ -16,13 +16,13 @@ from __future__ import annotations
 
 import hashlib
 import inspect
-import os
-import tempfile
 from pathlib import Path
 from types import ModuleType
 from typing import Callable
 
 import sympy as sp
+
+from rotorvib.io.cache_files import write_atomic
 
 
 def _key(name: str, args, modules: tuple[ModuleType, ...]) -> str:
@@ -47,17 +47,6 @@ def _load(path: Path) -> Callable | None:
         return None
 
 
-def _store(path: Path, source: str) -> None:
-    try:
-        path.parent.mkdir(exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-        with os.fdopen(fd, "w") as fh:
-            fh.write(source)
-        os.replace(tmp, path)           # atomic: parallel jobs never read half a file
-    except OSError:
-        pass
-
-
 def cached_lambdify(name: str, args, build: Callable[[], object], *,
                     modules: tuple[ModuleType, ...]) -> Callable:
     """``sympy.lambdify(args, build(), "numpy")``, from the disk cache when ``modules`` (the
@@ -67,5 +56,5 @@ def cached_lambdify(name: str, args, build: Callable[[], object], *,
     if path.exists() and (f := _load(path)) is not None:
         return f
     f = sp.lambdify(args, build(), "numpy")
-    _store(path, inspect.getsource(f))
+    write_atomic(path, inspect.getsource(f))      # parallel jobs never read half a file
     return f

@@ -11,9 +11,9 @@ compiles or loads anything.
 from __future__ import annotations
 
 import hashlib
-import os
-import tempfile
 from pathlib import Path
+
+from rotorvib.io.cache_files import write_atomic
 
 STAMP = "numba-sources.sha256"
 
@@ -40,11 +40,7 @@ def drop_if_stale(package_dir: Path) -> bool:
     try:
         for path in [*cache.glob("*.nbi"), *cache.glob("*.nbc")]:
             path.unlink(missing_ok=True)
-        cache.mkdir(exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=cache, suffix=".tmp")
-        with os.fdopen(fd, "w") as fh:
-            fh.write(digest)
-        os.replace(tmp, cache / STAMP)
     except OSError:
-        pass
+        return True                      # not stamped: the next process tries again
+    write_atomic(cache / STAMP, digest)
     return True
