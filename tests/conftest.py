@@ -31,12 +31,13 @@ def table2(config):
     return dual_absorber(**config["paper_c"]["table2"])
 
 
-def cf_check(path):
-    """Run the compliance-checker (CF 1.11) on ``path``; return (passed, report)."""
+def cf_check(*paths):
+    """Run the compliance-checker (CF 1.11) on ``paths`` in one process; return (all passed,
+    report naming each file's issues)."""
     import subprocess
     import sys
 
     checker = Path(sys.executable).parent / "compliance-checker"
-    run = subprocess.run([str(checker), "--test", "cf:1.11", "--criteria", "normal", str(path)],
-                         capture_output=True, text=True)
+    run = subprocess.run([str(checker), "--test", "cf:1.11", "--criteria", "normal",
+                          *map(str, paths)], capture_output=True, text=True)
     return run.returncode == 0, run.stdout

@@ -54,6 +54,15 @@ def test_written_file_passes_cf_1_11(tmp_path):
     assert passed, report
 
 
+def test_the_cf_check_of_many_files_fails_on_one_bad_file(tmp_path):
+    """The workflow test checks all datasets in one call: one file breaking CF fails it, named."""
+    good = write_dataset(_dataset(), tmp_path / "good.nc", Provenance("r", {}))
+    bad = tmp_path / "bad.nc"
+    xr.Dataset({"x": ("t", np.arange(3.0), {"units": "furlongs_per_blorp"})}).to_netcdf(bad)
+    passed, report = cf_check(good, bad)
+    assert not passed and "bad.nc has" in report and "good.nc has" not in report
+
+
 def test_read_dataset_returns_what_was_written_with_nan_kept(tmp_path):
     ds = _dataset()
     ds["D"][3] = np.nan  # a legitimate NaN (e.g. a censored run) is part of the checksum
