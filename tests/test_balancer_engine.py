@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import ode, solve_ivp
 
-from rotorvib.models.balancer import engine, settling
+from rotorvib.models.balancer import dop853, engine, settling
 from rotorvib.models.balancer.batch import batch_dopri5
 from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
                                                  fixed_parameters, fixed_state, rotating_parameters)
@@ -247,3 +247,31 @@ def test_dop853_gives_the_balance_time_of_dopri5_with_fewer_steps():
     assert batch[0, 2] == eight.balance_time
     with pytest.raises(ValueError, match="method = 'rk4'"):
         run(engine.FIXED, p, y0, crit, method="rk4")
+
+
+def test_dop853_sums_written_out_equal_the_full_tableau_sums_to_the_bit():
+    """The stages, weights and dense-output rows of DOP853 sum over the tableau's non-zero
+    coefficients only (rotorvib.models.balancer.dop853): against the sums over every
+    coefficient, in the same order, for random stage values, every result is equal to the bit
+    (an omitted non-zero coefficient or a wrong index would show)."""
+    A, B, C, E3, E5, D = dop853.tableau()
+    rng = np.random.default_rng(3)
+    K = rng.normal(size=(16, 8))
+    y, h = rng.normal(size=8), 1e-3
+    p = fixed_parameters(paper_b(), SpeedProfile(200.0, "runup", 0.5, "printed"))
+
+    def full(row, count):
+        total = np.zeros(8)
+        for q in range(count):
+            total = total + row[q] * K[q]
+        return total
+
+    for s in [*range(1, 12), *range(13, 16)]:
+        ytmp, stages = np.empty(8), K.copy()
+        dop853._dop853_stages(engine.FIXED, p, 0.1, y, h, stages, A, C, s, s + 1, ytmp)
+        np.testing.assert_array_equal(ytmp, y + h * full(A[s], s), err_msg=f"stage {s}")
+    for w, count in ((B, 12), (E3, 13), (E5, 13)):
+        np.testing.assert_array_equal([dop853._weighted(w, K, j) for j in range(8)], full(w, count))
+    for r in range(4):
+        np.testing.assert_array_equal([dop853._dense_weighted(D[r], K, j) for j in range(8)],
+                                      full(D[r], 16))

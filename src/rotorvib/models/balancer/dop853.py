@@ -33,16 +33,99 @@ def tableau() -> tuple:
     return tuple(np.ascontiguousarray(x, dtype=float) for x in (c.A, c.B, c.C, c.E3, c.E5, c.D))
 
 
+# The sums over the tableau are written out over its non-zero coefficients, term by term in
+# the order of the full sums, so that they equal them to the bit (tested): the compiled step
+# then holds no zero terms and no inner loops over the coefficients, at 0.86x the time of loops
+# over all of them (skipping the zeros by loop bounds read at run time was slower than those
+# loops), for about 5 s more compilation.
+
+
+@njit(cache=True, error_model="numpy")
+def _weighted(w, K, j):
+    """``sum_q w[q] K[q, j]`` for a weight row of DOP853 (``B``, ``E3``, ``E5``): columns 0
+    and 5-11 are its non-zero ones."""
+    return (w[0] * K[0, j] + w[5] * K[5, j] + w[6] * K[6, j] + w[7] * K[7, j] + w[8] * K[8, j] +
+            w[9] * K[9, j] + w[10] * K[10, j] + w[11] * K[11, j])
+
+
+@njit(cache=True, error_model="numpy")
+def _dense_weighted(d, K, j):
+    """``sum_q d[q] K[q, j]`` for a row of DOP853's dense-output matrix ``D``: the columns of
+    :func:`_weighted` and the dense stages 12-15."""
+    return (_weighted(d, K, j) + d[12] * K[12, j] + d[13] * K[13, j] + d[14] * K[14, j] +
+            d[15] * K[15, j])
+
+
 @njit(cache=True, error_model="numpy")
 def _dop853_stages(form, p, t, y, h, K, A, C, first, last, ytmp):
-    """Stages ``first .. last - 1`` of DOP853 into the rows of ``K`` (row 0: f(t, y))."""
-    ny = y.size
+    """Stages ``first .. last - 1`` of DOP853 into the rows of ``K`` (row 0: f(t, y)): stage
+    ``s`` is ``K[s] = f(t + C[s] h, y + h sum_{q < s} A[s, q] K[q])``, for ``s`` in 1-11 (the
+    step) and 13-15 (the dense output; row 12 is ``f(t + h, y_new)``, from the caller)."""
+    n = y.size
     for s in range(first, last):
-        for j in range(ny):
-            acc = 0.0
-            for q in range(s):
-                acc += A[s, q] * K[q, j]
-            ytmp[j] = y[j] + h * acc
+        if s == 1:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[1, 0] * K[0, j])
+        elif s == 2:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[2, 0] * K[0, j] + A[2, 1] * K[1, j])
+        elif s == 3:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[3, 0] * K[0, j] + A[3, 2] * K[2, j])
+        elif s == 4:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[4, 0] * K[0, j] + A[4, 2] * K[2, j] + A[4, 3] * K[3, j])
+        elif s == 5:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[5, 0] * K[0, j] + A[5, 3] * K[3, j] + A[5, 4] * K[4, j])
+        elif s == 6:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[6, 0] * K[0, j] + A[6, 3] * K[3, j] + A[6, 4] * K[4, j] +
+                                      A[6, 5] * K[5, j])
+        elif s == 7:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[7, 0] * K[0, j] + A[7, 3] * K[3, j] + A[7, 4] * K[4, j] +
+                                      A[7, 5] * K[5, j] + A[7, 6] * K[6, j])
+        elif s == 8:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[8, 0] * K[0, j] + A[8, 3] * K[3, j] + A[8, 4] * K[4, j] +
+                                      A[8, 5] * K[5, j] + A[8, 6] * K[6, j] + A[8, 7] * K[7, j])
+        elif s == 9:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[9, 0] * K[0, j] + A[9, 3] * K[3, j] + A[9, 4] * K[4, j] +
+                                      A[9, 5] * K[5, j] + A[9, 6] * K[6, j] + A[9, 7] * K[7, j] +
+                                      A[9, 8] * K[8, j])
+        elif s == 10:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[10, 0] * K[0, j] + A[10, 3] * K[3, j] +
+                                      A[10, 4] * K[4, j] + A[10, 5] * K[5, j] +
+                                      A[10, 6] * K[6, j] + A[10, 7] * K[7, j] +
+                                      A[10, 8] * K[8, j] + A[10, 9] * K[9, j])
+        elif s == 11:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[11, 0] * K[0, j] + A[11, 3] * K[3, j] +
+                                      A[11, 4] * K[4, j] + A[11, 5] * K[5, j] +
+                                      A[11, 6] * K[6, j] + A[11, 7] * K[7, j] +
+                                      A[11, 8] * K[8, j] + A[11, 9] * K[9, j] +
+                                      A[11, 10] * K[10, j])
+        elif s == 13:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[13, 0] * K[0, j] + A[13, 6] * K[6, j] +
+                                      A[13, 7] * K[7, j] + A[13, 8] * K[8, j] +
+                                      A[13, 9] * K[9, j] + A[13, 10] * K[10, j] +
+                                      A[13, 11] * K[11, j] + A[13, 12] * K[12, j])
+        elif s == 14:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[14, 0] * K[0, j] + A[14, 5] * K[5, j] +
+                                      A[14, 6] * K[6, j] + A[14, 7] * K[7, j] +
+                                      A[14, 10] * K[10, j] + A[14, 11] * K[11, j] +
+                                      A[14, 12] * K[12, j] + A[14, 13] * K[13, j])
+        elif s == 15:
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A[15, 0] * K[0, j] + A[15, 5] * K[5, j] +
+                                      A[15, 6] * K[6, j] + A[15, 7] * K[7, j] +
+                                      A[15, 8] * K[8, j] + A[15, 12] * K[12, j] +
+                                      A[15, 13] * K[13, j] + A[15, 14] * K[14, j])
         rhs(form, t + C[s] * h, ytmp, p, K[s])
 
 
@@ -54,13 +137,8 @@ def _dop853_error(K, y, ynew, h, rtol, atol, E3, E5):
     e3 = 0.0
     for j in range(ny):
         scale = atol + rtol * max(abs(y[j]), abs(ynew[j]))
-        a5 = 0.0
-        a3 = 0.0
-        for q in range(_N853 + 1):
-            a5 += E5[q] * K[q, j]
-            a3 += E3[q] * K[q, j]
-        e5 += (a5 / scale) ** 2
-        e3 += (a3 / scale) ** 2
+        e5 += (_weighted(E5, K, j) / scale) ** 2
+        e3 += (_weighted(E3, K, j) / scale) ** 2
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
     return abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * ny)
@@ -77,10 +155,7 @@ def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp, comps):
         F[1, j] = h * K[0, j] - dy
         F[2, j] = 2.0 * dy - h * (K[_N853, j] + K[0, j])
         for r in range(4):
-            acc = 0.0
-            for q in range(_N853_DENSE):
-                acc += D[r, q] * K[q, j]
-            F[3 + r, j] = h * acc
+            F[3 + r, j] = h * _dense_weighted(D[r], K, j)
 
 
 @njit(cache=True, error_model="numpy")
@@ -126,10 +201,7 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
         h = min(h, t_end - t)
         _dop853_stages(form, p, t, y, h, K, A, C, 1, _N853, ytmp)
         for j in range(ny):
-            acc_b = 0.0
-            for q in range(_N853):
-                acc_b += B[q] * K[q, j]
-            ynew[j] = y[j] + h * acc_b
+            ynew[j] = y[j] + h * _weighted(B, K, j)
         rhs(form, t + h, ynew, p, K[_N853])
         e = _dop853_error(K, y, ynew, h, rtol, atol, E3, E5)
         if not np.isfinite(e) or e >= 1.0:
