@@ -5,10 +5,11 @@
 # datasets only (and the papers' values); nothing is recomputed here.
 
 for (_paper, _datasets), _names in figure_groups().items():
+    _rule = f"figures_{_paper}_{'_'.join(_datasets)}"
 
     rule:
         name:
-            f"figures_{_paper}_{'_'.join(_datasets)}"
+            _rule
         input:
             **{name: dataset(_paper, name) for name in _datasets},
             paper_values=PAPER_VALUES,
@@ -24,7 +25,7 @@ for (_paper, _datasets), _names in figure_groups().items():
                 for name in _names
             },
         log:
-            logs(f"figures_{_paper}_{'_'.join(_datasets)}"),
+            logs(_rule),
         # Reads datasets only: runs where Snakemake runs, never as a cluster job.
         localrule: True
         params:
