@@ -68,6 +68,29 @@ def test_inversion_recovers_a_known_damping_ratio_from_a_simulated_balance_time(
     assert inv.needed == pytest.approx(0.013, rel=2e-3)
 
 
+def test_runs_asked_for_again_come_from_the_memo_unchanged(config, monkeypatch):
+    """Two quantities of one Table 2 row are one run: with a memo, a request already made runs
+    nothing and gives the same metrics, and a batch holds each distinct run once."""
+    cfg = config["paper_b"]
+    setup = Setup.from_paper_b(cfg)
+    row = {q.name: q for q in b.quantities(cfg, {})}
+    force, decay = row["table2_fmax_1"], row["table2_decay_1"]
+    made, runs = [], Setup.runs
+
+    def counted(self, inputs, **kw):
+        made.append(len(inputs))
+        return runs(self, inputs, **kw)
+
+    monkeypatch.setattr(Setup, "runs", counted)
+    memo = {}
+    first = b.run_all(setup, [(force, "printed", {}), (decay, "printed", {})], memo)
+    assert made == [1] and np.array_equal(first[0], first[1], equal_nan=True)
+    again = b.run_all(setup, [(decay, "printed", {}), (force, "consistent", {})], memo)
+    assert made == [1, 1]                      # only the consistent kinematics is new
+    np.testing.assert_array_equal(again[0], first[0])
+    np.testing.assert_array_equal(again[1], b.run_all(setup, [(force, "consistent", {})])[0])
+
+
 def test_paper_c_inversion_of_a_linear_parameter_is_exact(config):
     """|Theta| is proportional to Gamma0: the value that gives 7.5e-4 rad is known exactly."""
     stated = {**config["paper_c"]["rotor"], **config["paper_c"]["table2"], "fig3_time": 2.0}

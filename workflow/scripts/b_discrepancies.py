@@ -23,10 +23,11 @@ prefix = "table1_m_opt_"
 m_opt = {int(r.quantity[len(prefix):]): r.reproduced for r in reproduced
          if r.quantity.startswith(prefix)}
 analysed = [q for q in quantities(b, m_opt) if q.name in missed]
-baselines, found = hypotheses(setup, analysed, b["kinematics"], p.parameters)
+memo = {}  # runs made once, whichever hypothesis or inversion asks for them again
+baselines, found = hypotheses(setup, analysed, b["kinematics"], p.parameters, memo)
 inverted = [inv for q in analysed if missed[q.name][1] == "MAJOR"
             for inv in inversions(setup, q, missed[q.name][0], b["kinematics"][0], p.parameters,
-                                  p.inversion["range"], p.inversion["n_scan"])]
+                                  p.inversion["range"], p.inversion["n_scan"], memo)]
 for inv in inverted:
     print(f"{inv.quantity}: {inv.text()}", file=sys.stderr)
 ds = to_dataset(baselines, found, inverted, dataset_attrs(

@@ -91,31 +91,34 @@ def _with(setup: Setup, overrides: dict) -> Setup:
     return replace(setup, **fields)
 
 
-def run_all(setup: Setup, requests) -> list[np.ndarray]:
+def run_all(setup: Setup, requests, memo: dict | None = None) -> list[np.ndarray]:
     """Metrics of the runs of each ``(quantity, kinematics, overrides)`` request, batched by
-    balance criterion (one parallel batch per distinct criterion)."""
-    jobs = []
+    balance criterion (one parallel batch per distinct criterion).
+
+    A run already in ``memo`` (kept by the caller across calls, keyed by criterion, parameters
+    and initial state) is not made again: the analysis asks for about a fifth of its runs twice
+    (a Table 2 row's peak force and decay time are one run, and so are their scans)."""
+    memo = {} if memo is None else memo
+    keys, pending = [], {}
     for q, kinematics, overrides in requests:
         s = _with(setup, overrides)
         run_over = {k: v for k, v in overrides.items() if k in RUN_UNITS}
-        jobs.append((s, [s.run_inputs(**{**run, **run_over}, kinematics=kinematics)
-                         for run in q.runs]))
-    results: list[np.ndarray | None] = [None] * len(jobs)
-    for criterion in {s.criterion for s, _ in jobs}:
-        mine = [i for i, (s, _) in enumerate(jobs) if s.criterion == criterion]
-        batch = [inp for i in mine for inp in jobs[i][1]]
-        metrics = replace(setup, criterion=criterion).runs(batch, progress=False)
-        start = 0
-        for i in mine:
-            results[i] = metrics[start:start + len(jobs[i][1])]
-            start += len(jobs[i][1])
-    return results
+        inputs = [s.run_inputs(**{**run, **run_over}, kinematics=kinematics) for run in q.runs]
+        keys.append([(s.criterion, p.tobytes(), y0.tobytes()) for p, y0 in inputs])
+        pending.update((k, run) for k, run in zip(keys[-1], inputs) if k not in memo)
+    for criterion in dict.fromkeys(k[0] for k in pending):
+        mine = [k for k in pending if k[0] == criterion]
+        metrics = replace(setup, criterion=criterion).runs([pending[k] for k in mine],
+                                                           progress=False)
+        memo.update(zip(mine, metrics))
+    return [np.array([memo[k] for k in request]) for request in keys]
 
 
-def hypotheses(setup: Setup, quantity_list, kinematics: list[str],
-               parameters: list[str]) -> tuple[dict, list[Hypothesis]]:
+def hypotheses(setup: Setup, quantity_list, kinematics: list[str], parameters: list[str],
+               memo: dict | None = None) -> tuple[dict, list[Hypothesis]]:
     """Each quantity's baseline (first kinematics, its own metric, stated parameters) and its
-    value under every other definition and kinematics and every slip of ``parameters``."""
+    value under every other definition and kinematics and every slip of ``parameters``
+    (``memo``: runs already made, :func:`run_all`)."""
     base_kin = kinematics[0]
     requests, labels = [], []
     for q in quantity_list:
@@ -131,7 +134,7 @@ def hypotheses(setup: Setup, quantity_list, kinematics: list[str],
                 requests.append((q, base_kin, {name: value}))
                 labels.append((q, base_kin, label))
     baselines, found = {}, []
-    for (q, kin, slip), metrics in zip(labels, run_all(setup, requests)):
+    for (q, kin, slip), metrics in zip(labels, run_all(setup, requests, memo)):
         if slip is not None:
             found.append(Hypothesis(q.name, slip, "parameter slip", q.value(metrics)))
             continue
@@ -146,8 +149,10 @@ def hypotheses(setup: Setup, quantity_list, kinematics: list[str],
 
 
 def inversions(setup: Setup, quantity: Quantity, printed: float, kinematics: str,
-               parameters: list[str], factor_range, n_scan: int) -> list[Inversion]:
-    """For each parameter, the value in ``stated * factor_range`` that reproduces ``printed``."""
+               parameters: list[str], factor_range, n_scan: int,
+               memo: dict | None = None) -> list[Inversion]:
+    """For each parameter, the value in ``stated * factor_range`` that reproduces ``printed``
+    (``memo``: runs already made, :func:`run_all`)."""
     out = []
     for name in parameters:
         stated = quantity.stated(setup, name)
@@ -155,7 +160,7 @@ def inversions(setup: Setup, quantity: Quantity, printed: float, kinematics: str
             continue
 
         def evaluate(xs, name=name):
-            runs = run_all(setup, [(quantity, kinematics, {name: float(x)}) for x in xs])
+            runs = run_all(setup, [(quantity, kinematics, {name: float(x)}) for x in xs], memo)
             return np.array([quantity.value(m) for m in runs])
 
         out.append(invert(evaluate, printed, stated, stated * factor_range[0],
