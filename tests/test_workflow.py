@@ -22,6 +22,7 @@ from pathlib import Path
 import netCDF4
 import numpy as np
 import pytest
+import yaml
 
 from conftest import ROOT, cf_check
 from ro_crate import validate_crate
@@ -427,14 +428,16 @@ def slurm_cluster(tmp_path_factory):
         subprocess.run([str(CLUSTER), "stop", str(where)], timeout=120)
 
 
-# One dataset job of each paper to rerun on the cluster; b_balance_study declares two threads.
+# One dataset job of each paper to rerun on the cluster; the profile gives b_balance_study
+# more than one thread.
 CLUSTER_RULES = ("a_stability", "b_balance_study", "c_mass_ratio")
+SLURM_PROFILE = ROOT / "workflow/profiles/slurm/config.yaml"
 
 
 def test_the_shipped_slurm_profile_runs_on_a_real_cluster(run_dir, tmp_path, slurm_cluster):
     """Three datasets and the comparison are removed from a finished reduced run and rebuilt
     through workflow/profiles/slurm as the README says: the datasets as SLURM jobs (with the
-    threads their rules declare), their figures, values and the comparison as local rules; every
+    threads the profile sets), their figures, values and the comparison as local rules; every
     result comes back byte-identical. A hang fails the test (15 min bound)."""
     work = _copy_run(run_dir, tmp_path / "work")
     before = _digests(work)
@@ -454,12 +457,14 @@ def test_the_shipped_slurm_profile_runs_on_a_real_cluster(run_dir, tmp_path, slu
     figures = {rule for rule in planned if rule.startswith("figures_")}
     assert figures and planned["comparison"] == 1      # ran, but locally:
     assert not figures & set(per_rule) and "comparison" not in per_rule
+    threads = yaml.safe_load(SLURM_PROFILE.read_text())["set-threads"]
+    assert threads["b_balance_study"] > 1 and set(threads) <= {r["rule"] for r in job_records(work)}
     for job_id, rule in submitted.items():
         record = subprocess.run(["scontrol", "show", "job", job_id], capture_output=True,
                                 text=True, env={**os.environ, **slurm_cluster}).stdout
         assert "JobState=COMPLETED" in record, record
-        if rule == "b_balance_study":
-            assert "NumCPUs=2 " in record, record
+        if rule in threads:
+            assert f"NumCPUs={threads[rule]} " in record, record
     assert _digests(work) == before
     assert (work / "results/comparison.csv").read_bytes() == comparison
 

@@ -2,6 +2,12 @@
 from rotorvib.checks import sobol_design_problem
 from rotorvib.papers.b.config_checks import existence_problems, study_problem
 
+# Scheduling: every job runs one thread (a batch study's second thread gains less than a second
+# job beside it on a few cores; workflow/profiles/slurm gives the batch studies more). Paper B's
+# run-up studies feed the DAG's longest chain (their reproduced values, the discrepancy
+# analysis, the comparison, the report): they start before the rest.
+HEAD_OF_LONGEST_CHAIN = 1
+
 B_SETUP = {
     key: B[key]
     for key in ("machine", "initial_state", "speed", "balance", "marginal_growth")
@@ -261,6 +267,7 @@ rule b_stability:
         benchmarks("b_stability_{fig}")
     wildcard_constraints:
         fig="|".join(B["stability_maps"]),
+    priority: HEAD_OF_LONGEST_CHAIN
     params:
         zeta=B["machine"]["zeta"],
         n=B["machine"]["n"],
@@ -281,7 +288,7 @@ rule b_balance_study:
         benchmarks("b_balance_{study}")
     wildcard_constraints:
         study="|".join(B["balance_studies"]),
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -300,6 +307,7 @@ rule b_time_responses:
         logs("b_time_responses"),
     benchmark:
         benchmarks("b_time_responses")
+    priority: HEAD_OF_LONGEST_CHAIN
     params:
         **B_RUNS,
         responses=B["time_responses"],
@@ -317,7 +325,7 @@ rule b_ga:
         logs("b_ga"),
     benchmark:
         benchmarks("b_ga")
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=60,
     params:
@@ -336,7 +344,7 @@ rule b_table1_runs:
         logs("b_table1_runs"),
     benchmark:
         benchmarks("b_table1_runs")
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -355,7 +363,7 @@ rule b_forces:
         logs("b_forces"),
     benchmark:
         benchmarks("b_forces")
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -377,7 +385,7 @@ rule b_uncertainty:
         benchmarks("b_uncertainty_{case}")
     wildcard_constraints:
         case="|".join(B_UNCERTAIN),
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -406,7 +414,7 @@ rule b_pareto:
         logs("b_pareto"),
     benchmark:
         benchmarks("b_pareto")
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -428,7 +436,7 @@ rule b_basin:
         logs("b_basin"),
     benchmark:
         benchmarks("b_basin")
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     resources:
         runtime=60,
     params:
@@ -476,6 +484,7 @@ rule b_tables:
         kinematics=table("b", "kinematics", "md"),
     log:
         logs("b_tables"),
+    priority: HEAD_OF_LONGEST_CHAIN
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
     params:
@@ -530,7 +539,7 @@ rule b_discrepancies:
         logs("b_discrepancies"),
     benchmark:
         benchmarks("b_discrepancies")
-    threads: 2
+    priority: HEAD_OF_LONGEST_CHAIN
     params:
         paper_b={
             **B_SETUP,
