@@ -1,6 +1,7 @@
 """The package layout holds: models and methods know no paper, no paper imports another, the
 library never imports Snakemake, and modules stay small."""
 
+import re
 from pathlib import Path
 
 import pytest
@@ -42,3 +43,21 @@ def test_module_respects_the_layers(name):
 @pytest.mark.parametrize("name", sorted(MODULES))
 def test_modules_stay_small(name):
     assert len(MODULES[name].read_text().splitlines()) <= 430
+
+
+RULES = {match.group(1): block
+         for path in sorted((SRC.parent / "workflow/rules").glob("*.smk"))
+         for block in path.read_text().split("\nrule ")[1:]
+         if (match := re.match(r"(\w+):", block))}
+
+
+def test_every_job_that_computes_starts_before_the_figures_and_tables():
+    """Long jobs first (workflow/rules/common.smk): a rule that is not a local rule (it computes
+    a dataset or a check) declares a priority; a local one (it draws or tabulates) only if it
+    is on the longest chain."""
+    assert len(RULES) > 20
+    for name, block in RULES.items():
+        if "localrule: True" in block:
+            assert "priority:" not in block or "priority: LONGEST_CHAIN" in block, name
+        else:
+            assert "priority:" in block, name

@@ -78,6 +78,7 @@ rule a_responses:
         logs("a_responses"),
     benchmark:
         benchmarks("a_responses")
+    priority: COMPUTES
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -98,6 +99,7 @@ rule a_stability:
         logs("a_stability"),
     benchmark:
         benchmarks("a_stability")
+    priority: COMPUTES
     params:
         case=A["case"],
         fig7=A["fig7"],
@@ -114,6 +116,7 @@ rule a_error_study:
         logs("a_error_study"),
     benchmark:
         benchmarks("a_error_study")
+    priority: COMPUTES
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -133,6 +136,7 @@ rule a_slow_flow:
         logs("a_slow_flow"),
     benchmark:
         benchmarks("a_slow_flow")
+    priority: COMPUTES
     params:
         case=A["case"],
         flow=A["slow_flow"],

@@ -2,12 +2,6 @@
 from rotorvib.checks import sobol_design_problem
 from rotorvib.papers.b.config_checks import existence_problems, study_problem
 
-# Scheduling: every job runs one thread (a batch study's second thread gains less than a second
-# job beside it on a few cores; workflow/profiles/slurm gives the batch studies more). Paper B's
-# run-up studies feed the DAG's longest chain (their reproduced values, the discrepancy
-# analysis, the comparison, the report): they start before the rest.
-HEAD_OF_LONGEST_CHAIN = 1
-
 B_SETUP = {
     key: B[key]
     for key in ("machine", "initial_state", "speed", "balance", "marginal_growth")
@@ -250,6 +244,7 @@ rule b_derivation_checks:
         logs("b_derivation_checks"),
     benchmark:
         benchmarks("b_derivation_checks")
+    priority: COMPUTES
     params:
         module="rotorvib.papers.b.derivation",
     message:
@@ -267,7 +262,7 @@ rule b_stability:
         benchmarks("b_stability_{fig}")
     wildcard_constraints:
         fig="|".join(B["stability_maps"]),
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     params:
         zeta=B["machine"]["zeta"],
         n=B["machine"]["n"],
@@ -288,7 +283,7 @@ rule b_balance_study:
         benchmarks("b_balance_{study}")
     wildcard_constraints:
         study="|".join(B["balance_studies"]),
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -307,7 +302,7 @@ rule b_time_responses:
         logs("b_time_responses"),
     benchmark:
         benchmarks("b_time_responses")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     params:
         **B_RUNS,
         responses=B["time_responses"],
@@ -325,7 +320,7 @@ rule b_ga:
         logs("b_ga"),
     benchmark:
         benchmarks("b_ga")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=60,
     params:
@@ -344,7 +339,7 @@ rule b_table1_runs:
         logs("b_table1_runs"),
     benchmark:
         benchmarks("b_table1_runs")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -363,7 +358,7 @@ rule b_forces:
         logs("b_forces"),
     benchmark:
         benchmarks("b_forces")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -385,7 +380,7 @@ rule b_uncertainty:
         benchmarks("b_uncertainty_{case}")
     wildcard_constraints:
         case="|".join(B_UNCERTAIN),
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -414,7 +409,7 @@ rule b_pareto:
         logs("b_pareto"),
     benchmark:
         benchmarks("b_pareto")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=30,
     params:
@@ -436,7 +431,7 @@ rule b_basin:
         logs("b_basin"),
     benchmark:
         benchmarks("b_basin")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     resources:
         runtime=60,
     params:
@@ -484,7 +479,6 @@ rule b_tables:
         kinematics=table("b", "kinematics", "md"),
     log:
         logs("b_tables"),
-    priority: HEAD_OF_LONGEST_CHAIN
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
     params:
@@ -516,6 +510,7 @@ rule b_reproduced_values:
         "results/paper_b/reproduced.csv",
     log:
         logs("b_reproduced_values"),
+    priority: LONGEST_CHAIN
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.
     localrule: True
     params:
@@ -539,7 +534,7 @@ rule b_discrepancies:
         logs("b_discrepancies"),
     benchmark:
         benchmarks("b_discrepancies")
-    priority: HEAD_OF_LONGEST_CHAIN
+    priority: LONGEST_CHAIN
     params:
         paper_b={
             **B_SETUP,

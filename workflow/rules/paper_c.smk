@@ -122,6 +122,7 @@ rule c_derivation_checks:
         logs("c_derivation_checks"),
     benchmark:
         benchmarks("c_derivation_checks")
+    priority: COMPUTES
     params:
         module="rotorvib.papers.c.derivation",
     message:
@@ -137,6 +138,7 @@ rule c_ga:
         logs("c_ga"),
     benchmark:
         benchmarks("c_ga")
+    priority: COMPUTES
     resources:
         runtime=20,
     params:
@@ -159,6 +161,7 @@ rule c_frequency_response:
         logs("c_frequency_response"),
     benchmark:
         benchmarks("c_frequency_response")
+    priority: COMPUTES
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -176,6 +179,7 @@ rule c_mass_ratio:
         logs("c_mass_ratio"),
     benchmark:
         benchmarks("c_mass_ratio")
+    priority: COMPUTES
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -194,6 +198,7 @@ rule c_distance:
         logs("c_distance"),
     benchmark:
         benchmarks("c_distance")
+    priority: COMPUTES
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -212,6 +217,7 @@ rule c_time_response:
         logs("c_time_response"),
     benchmark:
         benchmarks("c_time_response")
+    priority: COMPUTES
     resources:
         runtime=20,
     params:
@@ -234,6 +240,7 @@ rule c_broadband:
         logs("c_broadband"),
     benchmark:
         benchmarks("c_broadband")
+    priority: COMPUTES
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -254,6 +261,7 @@ rule c_uncertainty:
         logs("c_uncertainty"),
     benchmark:
         benchmarks("c_uncertainty")
+    priority: COMPUTES
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -351,6 +359,7 @@ rule c_discrepancies:
         logs("c_discrepancies"),
     benchmark:
         benchmarks("c_discrepancies")
+    priority: COMPUTES
     params:
         rotor=C["rotor"],
         table2=C["table2"],
