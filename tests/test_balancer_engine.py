@@ -5,8 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import ode, solve_ivp
 
-from rotorvib.models.balancer import dop853, engine, settling
-from rotorvib.models.balancer.batch import batch_dopri5
+from rotorvib.models.balancer import dop853, engine, settling, simulate
 from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
                                                  fixed_parameters, fixed_state, rotating_parameters)
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
@@ -174,9 +173,9 @@ def test_failures_are_reported():
     with pytest.raises(ValueError, match="p: non-finite"):
         run(engine.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
     # ... and the engine itself flags a failed run in its batch instead of returning numbers
-    metrics = batch_dopri5(engine.FIXED, np.stack([p, p_bad]), np.stack([ic(), ic()]),
-                           0.5, 1e-8, 1e-11, 1e-3, R_THR, F_THR, MAX_STEPS,
-                           np.stack([settling.disabled()] * 2), np.arange(2))
+    metrics = np.stack([engine.integrate(engine.FIXED, q, ic(), 0.0, 0.5, 1e-8, 1e-11, 1e-3,
+                                         R_THR, F_THR, MAX_STEPS, np.empty((0, ic().size)),
+                                         settling.disabled()) for q in (p, p_bad)])
     assert metrics[0, 0] == engine.OK and metrics[1, 0] != engine.OK
     with pytest.raises(IntegrationError, match="1 of 2"):
         check_batch(metrics)
@@ -192,6 +191,23 @@ def test_batch_equals_single_runs():
         single = run(engine.FIXED, P[i], Y[i], BalanceCriterion(R_THR, F_THR, 8.0, 1e-3))
         assert batch[i, 2] == single.balance_time or (np.isnan(batch[i, 2]) and single.censored)
         assert batch[i, 6] == single.force_max
+
+
+@pytest.mark.parametrize("method", ["dopri5", "dop853"])
+def test_a_batch_on_many_threads_equals_it_on_one(method, monkeypatch):
+    """The threads share the runs out as they come free; every metric is the same to the bit
+    (and the rows stay in the order of the inputs)."""
+    rng = np.random.default_rng(5)
+    P = np.stack([fixed_parameters(paper_b(beta=x), SpeedProfile(200.0, "runup", 0.5, "printed"))
+                  for x in rng.uniform(0.2, 1.5, 12)])
+    Y = np.stack([ic(tuple(d)) for d in rng.uniform(0, 360, (12, 2))])
+    batches = []
+    for threads in (1, 3):
+        monkeypatch.setattr(simulate, "THREADS", threads)
+        batches.append(run_batch(engine.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 2.0, 1e-3),
+                                 method=method, progress=True, chunk=5))
+    np.testing.assert_array_equal(*batches)
+    assert len(np.unique(batches[0][:, 6])) == 12
 
 
 DOP853_CASE = dict(b=paper_b(), prof=SpeedProfile(200.0, "runup", 0.5, "printed"), deg=(40, 45))

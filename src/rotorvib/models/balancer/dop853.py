@@ -169,7 +169,7 @@ def _dop853_eval(theta, y, F, out, comps):
             F[3, j] + theta * (F[4, j] + t1 * (F[5, j] + theta * F[6, j]))))))
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy")
 def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
                      max_steps, out, stop, A, B, C, E3, E5, D):
     """The engine's ``integrate`` with DOP853 (tableau from :func:`tableau`): the same

@@ -254,7 +254,7 @@ def sample_into(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
     observe(acc, t, r, force, r_threshold, f_threshold)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy")
 def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
               max_steps, out, stop):
     """Integrate from ``(t0, y0)`` to ``t_end``; return the metrics row (``METRICS``).

@@ -7,14 +7,15 @@ balanced by its end is *censored*: its balance time is NaN and ``censored`` is T
 
 from __future__ import annotations
 
+import os
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.models.balancer import analysers, dop853, engine, settling
-from rotorvib.models.balancer.batch import batch_dop853, batch_dopri5
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
@@ -26,6 +27,8 @@ RTOL, ATOL = 1e-8, 1e-11
 #: Default method: the integrator the tolerances above were chosen for.
 METHOD = "dopri5"
 MAX_STEPS = 50_000_000
+#: Threads that a batch shares its runs out to (:func:`use_threads`): all cores by default.
+THREADS = os.cpu_count() or 1
 
 
 @dataclass(frozen=True)
@@ -197,38 +200,47 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
               rtol: float = RTOL, atol: float = ATOL, method: str = METHOD,
               stop: settling.StopRule | None = None, seed: int = 0, chunk: int = 256,
               progress: bool = True) -> np.ndarray:
-    """Metrics (rows of ``analysers.METRICS``, read with :func:`metric`) of many runs, in
-    parallel on all cores; with a ``stop`` rule (FIXED form) a run ends once its metrics are
+    """Metrics (rows of ``analysers.METRICS``, read with :func:`metric`) of many runs, on
+    :data:`THREADS` threads; with a ``stop`` rule (FIXED form) a run ends once its metrics are
     known (:mod:`settling`), else at ``criterion.t_end``.
 
-    Runs are shuffled (seeded) so that long and short runs mix across threads, and processed in
-    chunks of ``chunk`` so that progress can be shown on stderr (in one piece without it).
-    Failed runs are flagged in the ``status`` column, not raised: see :func:`check_batch`.
+    Each run is one call of the compiled integrator, which releases the GIL: the threads take
+    the runs of a shuffled (seeded) order one at a time as they come free, so that long and
+    short runs mix, and a batch compiles nothing beyond the single run's integrator. Runs are
+    processed in chunks of ``chunk`` so that progress can be shown on stderr (in one piece
+    without it). Failed runs are flagged in the ``status`` column, not raised: see
+    :func:`check_batch`.
     """
     c = criterion
     params = np.ascontiguousarray(params, dtype=float)
     y0s = np.ascontiguousarray(y0s, dtype=float)
     _check_inputs(params, y0s, rtol, atol)
-    code = _method(method)
+    integrate, tableau = ((dop853.integrate_dop853, dop853.tableau())
+                          if _method(method) == dop853.DOP853 else (engine.integrate, ()))
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
     if stop is not None and form == engine.FIXED:
         stops = certificates(params, stop, c.sample_dt)
     else:
-        stops = np.broadcast_to(settling.disabled(), (n, settling.SIZE))
+        stops = np.tile(settling.disabled(), (n, 1))
     result = np.empty((n, analysers.N_METRICS))
-    chunk = chunk if progress else n            # one parallel loop balances the threads best
-    for start in range(0, n, chunk):
-        idx = order[start:start + chunk]
-        args = (form, params[idx], y0s[idx], float(c.t_end), rtol, atol, c.sample_dt,
-                c.r_threshold, c.f_threshold, MAX_STEPS, np.ascontiguousarray(stops[idx]),
-                np.arange(len(idx)))
-        result[idx] = (batch_dop853(*args, *dop853.tableau()) if code == dop853.DOP853
-                       else batch_dopri5(*args))
-        if progress and n > chunk:
-            done = min(start + chunk, n)
-            print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
-                  file=sys.stderr, flush=True)
+    no_samples = np.empty((0, y0s.shape[1]))
+
+    def take(runs):
+        for i in runs:
+            result[i] = integrate(form, params[i], y0s[i], 0.0, float(c.t_end), rtol, atol,
+                                  c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS,
+                                  no_samples, stops[i], *tableau)
+
+    chunk = chunk if progress else n
+    with ThreadPoolExecutor(THREADS) as pool:
+        for start in range(0, n, chunk):
+            runs = iter(order[start:start + chunk])       # shared: each thread takes the next
+            list(pool.map(take, [runs] * THREADS))
+            if progress and n > chunk:
+                done = min(start + chunk, n)
+                print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
+                      file=sys.stderr, flush=True)
     if progress and n > chunk:
         print(file=sys.stderr)
     return result
@@ -245,7 +257,6 @@ def check_batch(metrics: np.ndarray) -> None:
 
 
 def use_threads(n: int) -> None:
-    """Limit the batch runner to ``n`` threads (a workflow job's declared threads)."""
-    import numba
-
-    numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
+    """Share a batch's runs out to ``n`` threads (a workflow job's threads)."""
+    global THREADS
+    THREADS = max(1, int(n))
