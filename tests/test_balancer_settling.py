@@ -2,16 +2,22 @@
 bounds vanish at the balanced states, hold along whole trajectories, and stopping changes no
 metric of a batch while it saves most of the integration."""
 
+import fcntl
+from contextlib import contextmanager
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from rotorvib.methods.numba_cache import STAMP, drop_if_stale
+import rotorvib.models.balancer.simulate as runner
+from rotorvib.methods.numba_cache import LOCK, STAMP, compile_lock, drop_if_stale
 from rotorvib.models.balancer import engine, settling
 from rotorvib.models.balancer.certificates import balanced_jacobian, certificates
 from rotorvib.models.balancer.kinematics import disk_kinematics
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
-from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run_batch, simulate
+from rotorvib.models.balancer.simulate import (BalanceCriterion, metric, run, run_batch,
+                                               simulate)
 from rotorvib.models.balancer.stability import jacobian
 
 RULE = settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9)
@@ -129,3 +135,41 @@ def test_a_stale_numba_cache_is_emptied(tmp_path):
     (tmp_path / "a.py").write_text("x = 2\n")                               # one module edited
     assert drop_if_stale(tmp_path) and not any(f.exists() for f in files)
     assert (cache / STAMP).read_text() != ""
+
+
+def test_the_compile_lock_is_exclusive_between_processes_and_released_after(tmp_path):
+    """Another open of the lock file (as another process makes) cannot take it while it is
+    held, and can once the block has ended."""
+    def try_lock():
+        with open(tmp_path / "__pycache__" / LOCK, "a") as other:
+            try:
+                fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                return False
+            return True
+
+    with compile_lock(tmp_path):
+        assert not try_lock()
+    assert try_lock()
+    with compile_lock(tmp_path / "missing" / "folder"):    # cannot be made: nothing is held
+        pass
+
+
+def test_only_the_first_use_of_an_integrator_takes_the_compile_lock(monkeypatch):
+    held = []
+
+    @contextmanager
+    def recorded(package_dir):
+        held.append(Path(package_dir).name)
+        yield
+
+    monkeypatch.setattr(runner, "compile_lock", recorded)
+    monkeypatch.setattr(runner, "_READY", set())
+    p = fixed_parameters(machine(), SpeedProfile(200.0, "runup", 0.5, "printed"))
+    y0 = fixed_state(2, r0=1e-3, theta0=0.0, phi0=np.radians([40.0, 45.0]))
+    criterion = BalanceCriterion(1e-4, 1.0, 0.5, 1e-3)
+    for method in ("dopri5", "dop853", "dopri5", "dop853"):
+        run_batch(engine.FIXED, np.stack([p, p]), np.stack([y0, y0]), criterion, method=method,
+                  progress=False)
+        run(engine.FIXED, p, y0, criterion, method=method)
+    assert held == ["balancer", "balancer"]

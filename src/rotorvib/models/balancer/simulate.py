@@ -10,11 +10,14 @@ from __future__ import annotations
 import os
 import sys
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
+from rotorvib.methods.numba_cache import compile_lock
 from rotorvib.models.balancer import analysers, dop853, engine, settling
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
@@ -29,6 +32,21 @@ METHOD = "dopri5"
 MAX_STEPS = 50_000_000
 #: Threads that a batch shares its runs out to (:func:`use_threads`): all cores by default.
 THREADS = os.cpu_count() or 1
+#: The compiled integrators this process has called (compiled or loaded from the cache) already.
+_READY: set = set()
+
+
+@contextmanager
+def _first_use(integrator):
+    """The first time this process runs ``integrator``, run the block under the package's
+    compile lock (:func:`rotorvib.methods.numba_cache.compile_lock`): jobs that start together
+    on an empty cache compile it once, not once each."""
+    if integrator in _READY:
+        yield
+        return
+    with compile_lock(Path(__file__).parent):
+        yield
+    _READY.add(integrator)
 
 
 @dataclass(frozen=True)
@@ -163,8 +181,10 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     out = np.empty((c.n_samples if store else 0, len(y0)))
     args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
             c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out, settling.disabled())
-    m = (dop853.integrate_dop853(*args, *dop853.tableau()) if code == dop853.DOP853
-         else engine.integrate(*args))
+    integrate, tableau = ((dop853.integrate_dop853, dop853.tableau())
+                          if code == dop853.DOP853 else (engine.integrate, ()))
+    with _first_use(integrate):
+        m = integrate(*args, *tableau)
     _raise_on_failure(m)
     result = RunResult.from_metrics(m, c.t_end)
     if not store:
@@ -206,10 +226,11 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
 
     Each run is one call of the compiled integrator, which releases the GIL: the threads take
     the runs of a shuffled (seeded) order one at a time as they come free, so that long and
-    short runs mix, and a batch compiles nothing beyond the single run's integrator. Runs are
-    processed in chunks of ``chunk`` so that progress can be shown on stderr (in one piece
-    without it). Failed runs are flagged in the ``status`` column, not raised: see
-    :func:`check_batch`.
+    short runs mix, and a batch compiles nothing beyond the single run's integrator (its first
+    use in a process, with the stop certificates and one run, holds the compile lock:
+    :func:`_first_use`). Runs are processed in chunks of ``chunk`` so that progress can be
+    shown on stderr (in one piece without it). Failed runs are flagged in the ``status``
+    column, not raised: see :func:`check_batch`.
     """
     c = criterion
     params = np.ascontiguousarray(params, dtype=float)
@@ -219,10 +240,6 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
                           if _method(method) == dop853.DOP853 else (engine.integrate, ()))
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
-    if stop is not None and form == engine.FIXED:
-        stops = certificates(params, stop, c.sample_dt)
-    else:
-        stops = np.tile(settling.disabled(), (n, 1))
     result = np.empty((n, analysers.N_METRICS))
     no_samples = np.empty((0, y0s.shape[1]))
 
@@ -232,10 +249,16 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
                                   c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS,
                                   no_samples, stops[i], *tableau)
 
+    with _first_use(integrate):
+        if stop is not None and form == engine.FIXED:
+            stops = certificates(params, stop, c.sample_dt)
+        else:
+            stops = np.tile(settling.disabled(), (n, 1))
+        take(order[:1])
     chunk = chunk if progress else n
     with ThreadPoolExecutor(THREADS) as pool:
         for start in range(0, n, chunk):
-            runs = iter(order[start:start + chunk])       # shared: each thread takes the next
+            runs = iter(order[max(start, 1):start + chunk])   # shared: each thread takes the next
             list(pool.map(take, [runs] * THREADS))
             if progress and n > chunk:
                 done = min(start + chunk, n)
