@@ -244,7 +244,7 @@ rule b_derivation_checks:
         logs("b_derivation_checks"),
     benchmark:
         benchmarks("b_derivation_checks")
-    priority: COMPUTES
+    priority: BESIDE_THE_COMPILE
     params:
         module="rotorvib.papers.b.derivation",
     message:
