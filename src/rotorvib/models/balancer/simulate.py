@@ -165,10 +165,14 @@ def _raise_on_failure(m):
                                f"after {int(metric(m, 'n_steps'))} steps")
 
 
-def _method(name: str) -> int:
-    if name not in dop853.METHODS:
-        raise ValueError(f"method = {name!r}: must be one of {sorted(dop853.METHODS)}")
-    return dop853.METHODS[name]
+def _integrator(method: str):
+    """The compiled integrator of ``method`` and the arguments that follow the common ones
+    (DOP853's tableau)."""
+    if method not in dop853.METHODS:
+        raise ValueError(f"method = {method!r}: must be one of {sorted(dop853.METHODS)}")
+    if dop853.METHODS[method] == dop853.DOP853:
+        return dop853.integrate_dop853, dop853.tableau()
+    return engine.integrate, ()
 
 
 def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *,
@@ -176,13 +180,11 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     """Integrate one run from t = 0 to ``criterion.t_end`` with ``method`` ("dopri5" or
     "dop853"); return a :class:`Trajectory` (``store=True``) or a :class:`RunResult`."""
     _check_inputs(p, y0, rtol, atol)
-    code = _method(method)
+    integrate, tableau = _integrator(method)
     c = criterion
     out = np.empty((c.n_samples if store else 0, len(y0)))
     args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
             c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out, settling.disabled())
-    integrate, tableau = ((dop853.integrate_dop853, dop853.tableau())
-                          if code == dop853.DOP853 else (engine.integrate, ()))
     with _first_use(integrate):
         m = integrate(*args, *tableau)
     _raise_on_failure(m)
@@ -236,8 +238,7 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     params = np.ascontiguousarray(params, dtype=float)
     y0s = np.ascontiguousarray(y0s, dtype=float)
     _check_inputs(params, y0s, rtol, atol)
-    integrate, tableau = ((dop853.integrate_dop853, dop853.tableau())
-                          if _method(method) == dop853.DOP853 else (engine.integrate, ()))
+    integrate, tableau = _integrator(method)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
     result = np.empty((n, analysers.N_METRICS))
