@@ -57,9 +57,10 @@ def compile_lock(package_dir: Path):
     empty cache compile one after the other's cache is written, the second in the time it takes
     to load it, instead of both compiling at once. Where the folder cannot be written or the
     file system has no locks, nothing is held."""
+    cache = Path(package_dir) / "__pycache__"
     try:
-        (Path(package_dir) / "__pycache__").mkdir(exist_ok=True)
-        handle = open(Path(package_dir) / "__pycache__" / LOCK, "a")
+        cache.mkdir(exist_ok=True)
+        handle = open(cache / LOCK, "a")
     except OSError:
         yield
         return

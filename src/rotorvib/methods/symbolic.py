@@ -79,7 +79,8 @@ def compare(paper: str, equation: str, description: str, derived, printed, *,
 
     With ``proportional_to`` (a term such as ``u''``) the scale ``s`` is the ratio of the two
     coefficients of that term (a printed equation may be the derived one divided by a constant),
-    each in :func:`trig_normal_form`, cancelled; otherwise ``s = 1``.  The difference is reported in the printed equation's scale.
+    each in :func:`trig_normal_form`, cancelled; otherwise ``s = 1``.  The difference is
+    reported in the printed equation's scale.
     """
     derived, printed = sp.expand(derived), sp.expand(printed)
     scale = sp.Integer(1)
