@@ -3,6 +3,9 @@ import copy
 import pytest
 
 from conftest import ROOT
+import yaml
+
+from rotorvib.io import config as config_module
 from rotorvib.io.config import ConfigError, config_hash, main, merge, validate_config
 
 
@@ -86,6 +89,27 @@ def test_config_check_command_gives_file_line_and_column(tmp_path, capsys):
     assert "config key 'paper_c.rotor.M': -5.0 is not allowed" in capsys.readouterr().out
     assert main(["--schema", str(ROOT / "config/schema.yaml"), str(ROOT / "config/config.yaml"),
                  str(ROOT / "config/test/config.yaml")]) == 0
+
+
+@pytest.mark.parametrize("name", sorted(str(p.relative_to(ROOT)) for folder in
+                                         ("config", "data", "workflow")
+                                         for p in (ROOT / folder).glob("**/*.y*ml")))
+def test_libyaml_parser_reads_every_yaml_file_as_pyyaml_does(name):
+    """The fast loader (libyaml's parser) and PyYAML's own give the same data, value and type
+    (``1e-9`` a float in both)."""
+    fast, own = (config_module._load(ROOT / name, loader) for loader in
+                 (config_module._FastStrictLoader, config_module._StrictLoader))
+    assert repr(fast) == repr(own)
+    assert issubclass(config_module._FastStrictLoader, yaml.CSafeLoader)
+
+
+def test_both_parsers_refuse_a_duplicate_key_at_its_place(tmp_path):
+    twice = tmp_path / "twice.yaml"
+    twice.write_text("paper_b:\n  machine:\n    zeta: 0.01\n    zeta: 1e-2\n")
+    for loader in (config_module._FastStrictLoader, config_module._StrictLoader):
+        with pytest.raises(ConfigError,
+                           match=r"twice.yaml:4:5: duplicate key 'zeta' \(first at line 3\)"):
+            config_module._load(twice, loader)
 
 
 def test_nested_command_line_overrides_are_read_as_yaml():
