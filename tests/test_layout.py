@@ -1,6 +1,7 @@
 """The package layout holds: models and methods know no paper, no paper imports another, the
 library never imports Snakemake, and modules stay small."""
 
+import ast
 import re
 from pathlib import Path
 
@@ -61,3 +62,19 @@ def test_every_job_that_computes_starts_before_the_figures_and_tables():
             assert "priority:" not in block or "priority: LONGEST_CHAIN" in block, name
         else:
             assert "priority:" in block, name
+
+
+SCRIPTS = sorted((SRC.parent / "workflow/scripts").glob("*.py"))
+
+
+@pytest.mark.parametrize("path", SCRIPTS, ids=lambda p: p.name)
+def test_every_job_script_starts_as_a_job(path):
+    """rotorvib.io.job first (its imports then run without the cyclic collector), and
+    ``job.start(snakemake.log[0])`` as the first statement after the imports."""
+    body = ast.parse(path.read_text()).body
+    assert isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant)  # docstring
+    first = body[1]
+    assert isinstance(first, ast.ImportFrom) and first.module == "rotorvib.io"
+    assert [alias.name for alias in first.names] == ["job"]
+    statement = next(s for s in body[1:] if not isinstance(s, (ast.Import, ast.ImportFrom)))
+    assert ast.unparse(statement) == "job.start(snakemake.log[0])"

@@ -1,12 +1,12 @@
 """Rule a_responses: paper A's responses by Runge-Kutta and multiple scales (Figs 2-6)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.a.studies import responses_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 betas = sorted({p.case["beta"], *p.betas})
 ds = responses_dataset(p.case, p.offset, betas, p.tau_end, p.tau_step, p.rk)

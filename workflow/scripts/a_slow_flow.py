@@ -1,6 +1,6 @@
 """Rule a_slow_flow: the small-mu slow flow's stability boundary against the exact one."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -8,7 +8,7 @@ from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.a.studies import slow_flow_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 grid = {k: np.linspace(p.flow[k]["min"], p.flow[k]["max"], p.flow[k]["n"]) for k in ("beta", "omega")}
 ds = slow_flow_dataset(p.case["mu"], p.case["rho"], p.case["zeta"], grid["beta"], grid["omega"])

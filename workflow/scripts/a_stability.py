@@ -1,6 +1,6 @@
 """Rule a_stability: paper A's Fig 7, stable region by multiple scales and by Lyapunov."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -8,7 +8,7 @@ from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.a.studies import stability_region_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 grid = {k: np.linspace(p.fig7[k]["min"], p.fig7[k]["max"], p.fig7[k]["n"]) for k in ("beta", "omega")}
 ds = stability_region_dataset(p.case["mu"], p.case["rho"], p.fig7["zetas"], grid["beta"],

@@ -1,7 +1,7 @@
 """Rule archive: one tarball of all results with a SHA-256 manifest, restore notes and an
 RO-Crate describing the run."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import snakemake as snakemake_package
 
@@ -9,7 +9,7 @@ from rotorvib.io.archive import make_archive
 from rotorvib.io.crate import CRATE, crate_metadata
 from rotorvib.io.provenance import git_date
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 inputs = snakemake.input
 crate = crate_metadata(
     results=list(inputs.results), configuration=list(inputs.configuration),

@@ -1,7 +1,7 @@
 """Rule b_balance_study: balance time against one run parameter (config paper_b.balance_studies),
 for every kinematics and initial condition."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -11,7 +11,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import balance_study_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 study = p.study

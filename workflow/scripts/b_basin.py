@@ -1,6 +1,6 @@
 """Rule b_basin: balance time over all initial ball positions (beyond the paper)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
@@ -8,7 +8,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import basin_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 ds = basin_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=p.basin["cases"],

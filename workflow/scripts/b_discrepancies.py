@@ -2,6 +2,7 @@
 hypotheses of rotorvib.papers.b.discrepancies, and the parameter values that would reproduce
 the ones missed by more than 10 %."""
 
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced
@@ -12,7 +13,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.discrepancies import hypotheses, inversions, quantities
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 b = p.paper_b

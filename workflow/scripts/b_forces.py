@@ -1,6 +1,6 @@
 """Rule b_forces: bearing forces of Table 2's rows against the race radius R (calibration)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -10,7 +10,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import force_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 t2, cal = p.table2, p.calibration["R"]

@@ -1,6 +1,6 @@
 """Rule b_ga: genetic algorithm over (beta, m) for every eps_bar x initial condition."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
@@ -8,7 +8,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.optimise import ga_dataset
 from rotorvib.papers.b.setup import Setup
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 ga = p.ga

@@ -1,6 +1,6 @@
 """Rule b_pareto: NSGA-II front of balance time against peak bearing force (beyond paper B)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
@@ -8,7 +8,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.pareto import pareto_dataset
 from rotorvib.papers.b.setup import Setup
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 pa = p.pareto

@@ -1,6 +1,6 @@
 """Rule b_stability: stability of the balanced state on paper B's grids (Figs 2-3)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -8,7 +8,7 @@ from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.stability_maps import stability_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 grid = {key: np.linspace(v["min"], v["max"], v["n"]) if isinstance(v, dict) else v
         for key, v in p.map.items()}

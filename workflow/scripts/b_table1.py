@@ -1,6 +1,6 @@
 """Rule b_table1_runs: balance time over ball mass for each operating speed (Table 1)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -10,7 +10,7 @@ from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import table1_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 t1 = p.table1

@@ -1,13 +1,13 @@
 """Rule b_tables: Tables 1 and 2 of paper B regenerated, and the kinematics note."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 from pathlib import Path
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
 from rotorvib.papers.b.claims import kinematics_note, table1_rows, table2_rows
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()}
 kin = str(data["table1"].kinematics_name.values[0])

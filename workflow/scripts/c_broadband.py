@@ -1,5 +1,6 @@
 """Rule c_broadband: the broadband absorber (beyond paper C), NSGA-II front and comparison."""
 
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 import sys
 
 import numpy as np
@@ -10,7 +11,7 @@ from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.models.absorber.time_response import response_times
 from rotorvib.papers.c.broadband import broadband_dataset, broadband_front
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 rotor = Rotor(**p.rotor)

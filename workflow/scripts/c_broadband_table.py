@@ -1,12 +1,12 @@
 """Rule c_broadband_table: the broadband absorber beside the other designs (beyond paper C)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
 from rotorvib.papers.c.broadband import comparison_table
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 rows = comparison_table(read_dataset(snakemake.input.bb, expected_config))
 write_table(rows, snakemake.output.csv, snakemake.output.md,

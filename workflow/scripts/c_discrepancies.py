@@ -2,7 +2,7 @@
 hypotheses of rotorvib.papers.c.discrepancies, and the parameter values that would reproduce
 the ones missed by more than 10 %."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
@@ -12,7 +12,7 @@ from rotorvib.papers.c.discrepancies import (MODELS, hypotheses, inversions,
                                              printed_determinant_ga)
 from rotorvib.papers.c.studies import REFERENCE
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 reproduced = {r.quantity: r.reproduced for r in read_reproduced(snakemake.input.reproduced)}
 missed = misses(read_paper_values(snakemake.input.paper_values),

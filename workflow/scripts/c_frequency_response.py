@@ -1,6 +1,6 @@
 """Rule c_frequency_response: Fig 5's frequency responses (paper C, eq. 20)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -9,7 +9,7 @@ from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import frequency_response_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])

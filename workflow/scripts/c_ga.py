@@ -1,5 +1,6 @@
 """Rule c_ga: genetic-algorithm tuning of the dual absorber (paper C, section 4)."""
 
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 import sys
 
 from rotorvib.io.config import job_config
@@ -8,7 +9,7 @@ from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.optimise import tune_dual_absorber
 from rotorvib.papers.c.studies import ga_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 rotor = Rotor(**p.rotor)
 

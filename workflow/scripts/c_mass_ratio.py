@@ -1,6 +1,6 @@
 """Rule c_mass_ratio: Fig 6's mass-ratio family (paper C)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
@@ -9,7 +9,7 @@ from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import mass_ratio_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])
 ds = mass_ratio_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), p.family["mu"], w,

@@ -1,6 +1,6 @@
 """Rule c_reproduced_values: every stated value and claim of paper C, measured on the datasets."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.comparison import paper_values_of, write_reproduced
 from rotorvib.io.datasets import read_dataset
@@ -9,7 +9,7 @@ from rotorvib.papers.c.broadband import broadband_rows
 from rotorvib.papers.c.claims import reproduce
 from rotorvib.papers.c.uncertainty import uncertainty_rows
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 rotor = Rotor(**p.rotor)

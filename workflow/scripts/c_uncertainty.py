@@ -1,13 +1,13 @@
 """Rule c_uncertainty: Sobol indices and band of Table 2's objective (beyond paper C)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.uncertainty import uncertainty_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 p = snakemake.params
 u = p.uncertainty
 ds = uncertainty_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), tolerance=u["tolerance"],

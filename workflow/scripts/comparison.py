@@ -1,14 +1,14 @@
 """Rule comparison: join the papers' values with the reproduced ones (results/comparison.*) and
 explain every number missed by the discrepancy analysis (results/discrepancies.*)."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 from rotorvib import discrepancy
 from rotorvib.comparison import (build_table, read_paper_values, read_reproduced,
                                  write_table_files)
 from rotorvib.io.datasets import read_dataset
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 reproduced = [row for path in snakemake.input.reproduced for row in read_reproduced(path)]
 papers = {row.paper for row in reproduced}

@@ -2,15 +2,15 @@
 ``rotorvib.papers.<paper>.figures.<function>`` (params.module) from its datasets (by argument
 name) and the paper's values. Under every figure: the parameters its datasets were made with."""
 
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 import importlib
 import json
-import sys
 
 from rotorvib.comparison import paper_values_of
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.plotting import parameters_text, save, state_parameters
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
 p = snakemake.params
 read = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()

@@ -1,13 +1,13 @@
 """Rule report_text: the report's landing page and every caption, from the comparison table."""
 
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 import csv
-import sys
 from pathlib import Path
 
 from rotorvib import discrepancy, report
 from rotorvib.io.config import load_yaml
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 
 
 def rows(path):

@@ -1,11 +1,11 @@
 """Rule run_record: the run's whole (validated) configuration and its commit, as files."""
 
-import sys
+from rotorvib.io import job  # first: the imports below run without the cyclic GC
 from pathlib import Path
 
 import yaml
 
-sys.stderr = open(snakemake.log[0], "w", buffering=1)
+job.start(snakemake.log[0])
 
 commit, dirty = snakemake.params.commit
 Path(snakemake.output.config).write_text(
