@@ -3,6 +3,7 @@ hypotheses of rotorvib.papers.b.discrepancies, and the parameter values that wou
 the ones missed by more than 10 %."""
 
 from rotorvib.io import job  # first: the imports below run without the cyclic GC
+
 import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced

@@ -1,6 +1,7 @@
 """Rule c_broadband: the broadband absorber (beyond paper C), NSGA-II front and comparison."""
 
 from rotorvib.io import job  # first: the imports below run without the cyclic GC
+
 import sys
 
 import numpy as np

@@ -1,6 +1,7 @@
 """Rule c_ga: genetic-algorithm tuning of the dual absorber (paper C, section 4)."""
 
 from rotorvib.io import job  # first: the imports below run without the cyclic GC
+
 import sys
 
 from rotorvib.io.config import job_config

@@ -1,6 +1,7 @@
 """Rule report_text: the report's landing page and every caption, from the comparison table."""
 
 from rotorvib.io import job  # first: the imports below run without the cyclic GC
+
 import csv
 from pathlib import Path
 

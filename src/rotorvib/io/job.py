@@ -1,7 +1,7 @@
 """The process of one workflow job: its start-up and its log.
 
 Every job script imports this module before anything else and calls :func:`start` once its
-imports are done.  A job is a fresh Python process whose imports (numpy, pandas, xarray,
+imports are done (a module it imports by name included).  A job is a fresh Python process whose imports (numpy, pandas, xarray,
 matplotlib, numba, pymoo) create over a hundred thousand container objects, almost none of
 them garbage; Python's cyclic collector, triggered every 700 net container allocations, scans
 them hundreds of times while they are created, and once more when the process exits.  So importing this module

@@ -98,9 +98,3 @@ def response_times(omega: float, t_end: float, samples_per_period: int) -> np.nd
 def undamped_resonance_envelope(rotor: Rotor, t):
     """Exact envelope ``Gamma0 t / (2 J w_n)`` of the bare rotor driven at ``w_n`` from rest."""
     return rotor.Gamma0 * np.asarray(t) / (2 * rotor.J * rotor.omega_n)
-
-
-def peak_amplitude(t, x, t_at: float, window: float) -> float:
-    """Largest ``|x|`` over ``[t_at - window, t_at]``: the amplitude at ``t_at`` read off a plot."""
-    sel = (t >= t_at - window) & (t <= t_at)
-    return float(np.max(np.abs(x[sel])))
