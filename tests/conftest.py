@@ -10,6 +10,13 @@ from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def pytest_collection_modifyitems(items):
+    """The workflow tests first: most of the suite's time, in one file, which pytest-xdist
+    (pyproject.toml) then starts on one worker at once while the other takes the library
+    tests."""
+    items.sort(key=lambda item: item.get_closest_marker("workflow") is None)
+
+
 @pytest.fixture(scope="session")
 def config():
     return validate_config(load_yaml(ROOT / "config/config.yaml"),

@@ -28,6 +28,9 @@ from conftest import ROOT, cf_check
 from ro_crate import validate_crate
 from rotorvib.comparison import read_paper_values
 from rotorvib.io.archive import verify_archive
+from rotorvib.models.balancer import dop853, engine, settling
+from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
+from rotorvib.models.balancer.simulate import BalanceCriterion, run_batch
 
 pytestmark = pytest.mark.workflow
 BIN = Path(sys.executable).parent
@@ -125,10 +128,26 @@ def _copy_run(run_dir: Path, dest: Path) -> Path:
     return dest
 
 
+def _compile_the_engine() -> None:
+    """A short stopped batch with each integrator, in this process: it compiles the engine into
+    numba's cache in the working tree (under the package's compile lock) before the repository
+    is copied, so that the copies carry it and the library tests beside (pytest-xdist) load it:
+    one compilation instead of three side by side."""
+    b = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012, zeta=0.01,
+                              beta=1.0)
+    p = fixed_parameters(b, SpeedProfile(200.0, "runup"))[None]
+    y0 = fixed_state(2, r0=1e-3, theta0=0.0, phi0=[0.5, -0.5])[None]
+    for method in dop853.METHODS:
+        run_batch(engine.FIXED, p, y0, BalanceCriterion(1e-4, 1.0, 0.05, 1e-3), method=method,
+                  stop=settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9),
+                  progress=False)
+
+
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory) -> list[Path]:
     """Two independent reduced runs, each in its own copy of the repository, side by side (two
     runs share the two cores better than one run followed by another)."""
+    _compile_the_engine()
     works = [_copy_repository(tmp_path_factory.mktemp(name)) for name in ("repo", "twin")]
     with ThreadPoolExecutor(len(works)) as pool:
         list(pool.map(lambda work: snakemake(work, "-j2", *REDUCED), works))
