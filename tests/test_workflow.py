@@ -17,6 +17,7 @@ import sys
 import tarfile
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
+from functools import partial
 from pathlib import Path
 
 import netCDF4
@@ -25,6 +26,7 @@ import pytest
 import yaml
 
 from conftest import ROOT, cf_check
+from forked_snakemake import ForkedSnakemake
 from ro_crate import validate_crate
 from rotorvib.comparison import read_paper_values
 from rotorvib.io.archive import verify_archive
@@ -60,13 +62,16 @@ def _copy_repository(dest: Path) -> Path:
     return dest
 
 
+def _environment(cwd: Path, env: dict | None = None) -> dict[str, str]:
+    return {**os.environ, "PYTHONPATH": os.pathsep.join([str(cwd / "src"), str(RECORDER)]),
+            "ROTORVIB_JOB_RECORDS": str(cwd / RECORDS), **(env or {})}
+
+
 def snakemake(cwd: Path, *args, check=True, env=None, timeout=None) -> subprocess.CompletedProcess:
     """Run Snakemake in ``cwd`` with its own ``src`` first on the path (and ``env`` added); every
     script job records what it loaded into ``cwd/job_records`` (tests/oracles/job_recorder)."""
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(cwd / "src"), str(RECORDER)]),
-           "ROTORVIB_JOB_RECORDS": str(cwd / RECORDS), **(env or {})}
     run = subprocess.run([str(BIN / "snakemake"), *args], cwd=cwd, capture_output=True,
-                         text=True, env=env, timeout=timeout)
+                         text=True, env=_environment(cwd, env), timeout=timeout)
     if check and run.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{run.stdout}\n{run.stderr}")
     return run
@@ -91,9 +96,12 @@ def planned_jobs(run: subprocess.CompletedProcess) -> set[str]:
     return set(job_counts(run))
 
 
-def planned_outputs(cwd: Path, *args) -> set[str]:
-    """Output files that Snakemake plans to (re)create, from ``--summary``."""
-    lines = snakemake(cwd, "--summary", *REDUCED, *args).stdout.splitlines()
+def planned_outputs(cwd: Path, *args, command=None) -> set[str]:
+    """Output files that Snakemake plans to (re)create, from ``--summary`` (run by ``command``,
+    a :class:`forked_snakemake.ForkedSnakemake` of ``cwd``, when given)."""
+    run = (command or partial(snakemake, cwd))("--summary", *REDUCED, *args)
+    assert run.returncode == 0, run.stdout + run.stderr
+    lines = run.stdout.splitlines()
     header = lines[0].split("\t")
     rows = [dict(zip(header, line.split("\t"))) for line in lines[1:] if "\t" in line]
     return {row["output_file"] for row in rows if row["plan"] != "no update"}
@@ -211,17 +219,19 @@ def test_config_change_reruns_exactly_the_dependent_jobs(run_dir, tmp_path):
 
 
 def _edit_in_turn(work: Path, files: list[str], edit) -> dict[str, set[str]]:
-    """Planned outputs after editing each file alone (restored afterwards)."""
+    """Planned outputs after editing each file alone (restored afterwards), each dry run a
+    ``snakemake`` command forked from one that has done its imports (tests/forked_snakemake.py)."""
     planned = {}
-    for name in files:
-        path = work / name
-        original, stat = path.read_bytes(), path.stat()
-        try:
-            edit(path)
-            planned[name] = planned_outputs(work)
-        finally:
-            path.write_bytes(original)
-            os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    with ForkedSnakemake(work, _environment(work)) as command:
+        for name in files:
+            path = work / name
+            original, stat = path.read_bytes(), path.stat()
+            try:
+                edit(path)
+                planned[name] = planned_outputs(work, command=command)
+            finally:
+                path.write_bytes(original)
+                os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
     return planned
 
 
