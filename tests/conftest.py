@@ -11,10 +11,31 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def pytest_collection_modifyitems(items):
-    """The workflow tests first: most of the suite's time, in one file, which pytest-xdist
-    (pyproject.toml) then starts on one worker at once while the other takes the library
-    tests."""
-    items.sort(key=lambda item: item.get_closest_marker("workflow") is None)
+    """test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), most of the
+    suite's time, on one pytest-xdist worker (pyproject.toml) while the other takes the library
+    tests; the other files that read the runs last, so that whichever worker is free then takes
+    them once the runs exist."""
+    def order(item):
+        if item.path.name == "test_workflow.py":
+            return 0
+        return 2 if "runs" in item.fixturenames else 1
+    items.sort(key=order)
+
+
+@pytest.fixture(scope="session")
+def runs(tmp_path_factory, worker_id) -> list[Path]:
+    """The two reduced runs of the session (tests/workflow_runs.py), built once for all workers
+    in the folder they share."""
+    from workflow_runs import shared_runs
+
+    root = tmp_path_factory.getbasetemp()
+    return shared_runs(root if worker_id == "master" else root.parent)
+
+
+@pytest.fixture(scope="session")
+def run_dir(runs) -> Path:
+    """The first reduced run: to be read, or copied (workflow_runs.copy_run) to be changed."""
+    return runs[0]
 
 
 @pytest.fixture(scope="session")

@@ -1,0 +1,157 @@
+"""The reduced workflow runs that the end-to-end tests share, and the helpers that drive them.
+
+Two reduced runs (config/test/config.yaml), each in its own copy of the repository, are built
+once per test session by :func:`shared_runs`: the first pytest-xdist worker to need them builds
+them while the other waits on a lock, then both use them.  The tests that read them live in
+several files (test_workflow.py, test_delivery.py, test_cluster.py) so that the two workers share
+them; a test never changes a run in place (it works in a copy, :func:`copy_run`), as another
+worker may be reading or copying it at the same time.
+"""
+
+import fcntl
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from functools import partial
+from pathlib import Path
+
+from conftest import ROOT
+from rotorvib.models.balancer import dop853, engine, settling
+from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
+from rotorvib.models.balancer.simulate import BalanceCriterion, run_batch
+
+BIN = Path(sys.executable).parent
+REDUCED = ["--configfile", "config/config.yaml", "config/test/config.yaml"]
+RECORDER = ROOT / "tests/oracles/job_recorder"
+RECORDS = "job_records"
+
+
+def copy_repository(dest: Path) -> Path:
+    """The repository's files (as git lists them) and the package's caches in
+    ``src/**/__pycache__`` (numba's, the sympy code generator's, the fingerprint memo), each
+    valid only for its sources (rotorvib.methods.numba_cache, rotorvib.methods.codegen,
+    rotorvib.io.fingerprint). The library's own tests build them in the working tree; copied,
+    the workflow runs here do not compile them again."""
+    for cache in (ROOT / "src").rglob("__pycache__"):
+        shutil.copytree(cache, dest / cache.relative_to(ROOT), dirs_exist_ok=True)
+    listed = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"],
+                            cwd=ROOT, capture_output=True, text=True)
+    if listed.returncode == 0:
+        for name in listed.stdout.splitlines():
+            if (ROOT / name).is_file():
+                (dest / name).parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(ROOT / name, dest / name)
+    else:
+        shutil.copytree(ROOT, dest, dirs_exist_ok=True,
+                        ignore=shutil.ignore_patterns("results", ".snakemake", ".git", ".venv"))
+    return dest
+
+
+def environment(cwd: Path, env: dict | None = None) -> dict[str, str]:
+    return {**os.environ, "PYTHONPATH": os.pathsep.join([str(cwd / "src"), str(RECORDER)]),
+            "ROTORVIB_JOB_RECORDS": str(cwd / RECORDS), **(env or {})}
+
+
+def snakemake(cwd: Path, *args, check=True, env=None, timeout=None) -> subprocess.CompletedProcess:
+    """Run Snakemake in ``cwd`` with its own ``src`` first on the path (and ``env`` added); every
+    script job records what it loaded into ``cwd/job_records`` (tests/oracles/job_recorder)."""
+    run = subprocess.run([str(BIN / "snakemake"), *args], cwd=cwd, capture_output=True,
+                         text=True, env=environment(cwd, env), timeout=timeout)
+    if check and run.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{run.stdout}\n{run.stderr}")
+    return run
+
+
+def job_counts(run: subprocess.CompletedProcess) -> dict[str, int]:
+    """Jobs per rule in the 'Job stats' table of a run (empty when nothing is to be done)."""
+    lines = (run.stdout + run.stderr).splitlines()
+    if "Job stats:" not in lines:
+        return {}
+    jobs = {}
+    for line in lines[lines.index("Job stats:") + 3:]:
+        name, count = line.split() if line.strip() else ("total", 0)
+        if name == "total":
+            break
+        jobs[name] = int(count)
+    return jobs
+
+
+def planned_jobs(run: subprocess.CompletedProcess) -> set[str]:
+    """Rule names in the 'Job stats' table of a dry run (empty when nothing is to be done)."""
+    return set(job_counts(run))
+
+
+def planned_outputs(cwd: Path, *args, command=None) -> set[str]:
+    """Output files that Snakemake plans to (re)create, from ``--summary`` (run by ``command``,
+    a :class:`forked_snakemake.ForkedSnakemake` of ``cwd``, when given)."""
+    run = (command or partial(snakemake, cwd))("--summary", *REDUCED, *args)
+    assert run.returncode == 0, run.stdout + run.stderr
+    lines = run.stdout.splitlines()
+    header = lines[0].split("\t")
+    rows = [dict(zip(header, line.split("\t"))) for line in lines[1:] if "\t" in line]
+    return {row["output_file"] for row in rows if row["plan"] != "no update"}
+
+
+def job_records(cwd: Path) -> list[dict]:
+    """What each job of the run loaded and read and wrote (tests/oracles/job_recorder)."""
+    return [json.loads(p.read_text()) for p in sorted((cwd / RECORDS).glob("*.json"))]
+
+
+def digests(root: Path) -> dict[str, str]:
+    return {p.relative_to(root).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted((root / "results").glob("paper_*/**/*"))
+            if p.suffix in {".nc", ".csv", ".md", ".png"}}
+
+
+def copy_run(run_dir: Path, dest: Path) -> Path:
+    """A copy of a run to change (a run is shared and read by tests in both workers)."""
+    shutil.copytree(run_dir, dest, symlinks=True)
+    return dest
+
+
+def compile_the_engine() -> None:
+    """A short stopped batch with each integrator, in this process: it compiles the engine into
+    numba's cache in the working tree (under the package's compile lock) before the repository
+    is copied, so that the copies carry it and the library tests beside (pytest-xdist) load it:
+    one compilation instead of three side by side."""
+    b = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012, zeta=0.01,
+                              beta=1.0)
+    p = fixed_parameters(b, SpeedProfile(200.0, "runup"))[None]
+    y0 = fixed_state(2, r0=1e-3, theta0=0.0, phi0=[0.5, -0.5])[None]
+    for method in dop853.METHODS:
+        run_batch(engine.FIXED, p, y0, BalanceCriterion(1e-4, 1.0, 0.05, 1e-3), method=method,
+                  stop=settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9),
+                  progress=False)
+
+
+def build_runs(root: Path) -> list[Path]:
+    """Two independent reduced runs under ``root``, each in its own copy of the repository,
+    side by side (two runs share the two cores better than one run followed by another)."""
+    compile_the_engine()
+    works = [copy_repository(root / name) for name in ("repo", "twin")]
+    with ThreadPoolExecutor(len(works)) as pool:
+        list(pool.map(lambda work: snakemake(work, "-j2", *REDUCED), works))
+    return works
+
+
+def shared_runs(root: Path) -> list[Path]:
+    """The runs of :func:`build_runs` under ``root``, a folder every worker of the session sees:
+    built by the first caller, which holds a lock on ``root/runs.lock`` meanwhile, and read by
+    the others from ``root/runs.json`` (which holds the error instead when the build failed)."""
+    built = root / "runs.json"
+    with open(root / "runs.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not built.exists():
+            try:
+                built.write_text(json.dumps([str(work) for work in build_runs(root)]))
+            except Exception as error:
+                built.write_text(json.dumps({"error": str(error)}))
+                raise
+    runs = json.loads(built.read_text())
+    if isinstance(runs, dict):
+        raise AssertionError(f"the reduced runs failed in another worker:\n{runs['error']}")
+    return [Path(work) for work in runs]
