@@ -60,7 +60,10 @@ class ForkedSnakemake:
     def __call__(self, *args: str) -> subprocess.CompletedProcess:
         self.process.stdin.write(json.dumps(list(args)) + "\n")
         self.process.stdin.flush()
-        reply = json.loads(self.process.stdout.readline())
+        line = self.process.stdout.readline()
+        if not line:
+            raise RuntimeError("the Snakemake server stopped; its error is printed above")
+        reply = json.loads(line)
         return subprocess.CompletedProcess(["snakemake", *args], reply["returncode"],
                                            reply["stdout"], reply["stderr"])
 
@@ -73,5 +76,5 @@ class ForkedSnakemake:
 
 
 if __name__ == "__main__":
-    sys.path.pop(0)  # this folder: a ``snakemake`` command's first entry is its own bin folder
+    sys.path[0] = str(Path(sys.executable).parent)  # as for the ``snakemake`` script there
     _serve()

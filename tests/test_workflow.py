@@ -21,7 +21,7 @@ from conftest import ROOT, cf_check
 from forked_snakemake import ForkedSnakemake
 from rotorvib.comparison import read_paper_values
 from workflow_runs import (BIN, REDUCED, copy_run, digests, environment, job_records,
-                           planned_outputs, snakemake)
+                           planned_outputs, snakemake, to_update)
 
 pytestmark = pytest.mark.workflow
 
@@ -142,6 +142,24 @@ def test_every_module_and_data_file_reruns_exactly_the_jobs_that_load_it(run_dir
              for name, plan in planned.items() if plan != expected(name)}
     assert not wrong, json.dumps(wrong, indent=1)
     assert planned["src/rotorvib/__init__.py"] >= {f for r in records for f in r["output"]}
+
+
+def test_a_forked_command_answers_as_a_fresh_one(run_dir, tmp_path):
+    """The dry runs above come from tests/forked_snakemake.py: a forked command exits and prints
+    as a fresh ``snakemake`` does, for a command that fails and, after an edit made once the
+    server has answered, for a plan."""
+    work = copy_run(run_dir, tmp_path / "work")
+    failing = ("-n", *REDUCED, "--config", "paper_c={rotor: {M: -5}}")
+    with ForkedSnakemake(work, environment(work)) as forked:
+        answers = [(snakemake(work, *failing, check=False), forked(*failing))]
+        _behaviour_edit(work / "src/rotorvib/papers/c/claims.py")
+        answers.append((snakemake(work, "--summary", *REDUCED), forked("--summary", *REDUCED)))
+    for fresh, fork in answers:
+        assert (fork.returncode, fork.stdout, fork.stderr) == (
+            fresh.returncode, fresh.stdout, fresh.stderr)
+    (failed, _), (planned, _) = answers
+    assert failed.returncode == 1 and "config key 'paper_c.rotor.M'" in failed.stdout
+    assert "results/paper_c/figures/fig6.png" in to_update(planned.stdout)
 
 
 def test_comments_and_docstrings_rerun_nothing(run_dir, tmp_path):

@@ -90,7 +90,12 @@ def planned_outputs(cwd: Path, *args, command=None) -> set[str]:
     a :class:`forked_snakemake.ForkedSnakemake` of ``cwd``, when given)."""
     run = (command or partial(snakemake, cwd))("--summary", *REDUCED, *args)
     assert run.returncode == 0, run.stdout + run.stderr
-    lines = run.stdout.splitlines()
+    return to_update(run.stdout)
+
+
+def to_update(summary: str) -> set[str]:
+    """The output files of a ``--summary`` table whose plan is not 'no update'."""
+    lines = summary.splitlines()
     header = lines[0].split("\t")
     rows = [dict(zip(header, line.split("\t"))) for line in lines[1:] if "\t" in line]
     return {row["output_file"] for row in rows if row["plan"] != "no update"}
