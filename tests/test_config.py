@@ -1,10 +1,9 @@
 import copy
 
 import pytest
-
-from conftest import ROOT
 import yaml
 
+from conftest import ROOT
 from rotorvib.io import config as config_module
 from rotorvib.io.config import ConfigError, config_hash, main, merge, validate_config
 

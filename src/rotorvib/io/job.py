@@ -1,15 +1,15 @@
 """The process of one workflow job: its start-up and its log.
 
 Every job script imports this module before anything else and calls :func:`start` once its
-imports are done (a module it imports by name included).  A job is a fresh Python process whose imports (numpy, pandas, xarray,
-matplotlib, numba, pymoo) create over a hundred thousand container objects, almost none of
-them garbage; Python's cyclic collector, triggered every 700 net container allocations, scans
-them hundreds of times while they are created, and once more when the process exits.  So importing this module
-switches the collector off, and :func:`start` moves everything the imports made into the
-permanent generation (:func:`gc.freeze`), which no later collection scans, the one at exit
-included, then switches the collector on for the job's own work.  ``python -m
-benchmarks.job_start`` measures what this saves a job that imports the engine, xarray and
-matplotlib.
+imports are done (a module it imports by name included). A job is a fresh Python process whose
+imports (numpy, pandas, xarray, matplotlib, numba, pymoo) create over a hundred thousand
+container objects, almost none of them garbage; Python's cyclic collector, triggered every 700
+net container allocations, scans them hundreds of times while they are created, and once more
+when the process exits. So importing this module switches the collector off, and :func:`start`
+moves everything the imports made into the permanent generation (:func:`gc.freeze`), which no
+later collection scans, the one at exit included, then switches the collector on for the job's
+own work. ``python -m benchmarks.job_start`` measures what this saves a job that imports the
+engine, xarray and matplotlib.
 """
 
 import gc
