@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from rotorvib.models.balancer.engine import rhs_rotating
+from rotorvib.models.balancer.engine import copy_into, rhs_rotating
 from rotorvib.models.balancer.kinematics import CONSTANT
 from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, rotating_parameters
 from rotorvib.models.balancer.settling import (
@@ -37,7 +37,7 @@ def balanced_jacobian(p_rot, alpha):
     f = np.empty(8)
     for j in range(8):
         for step, weight in ((2.0, -1.0), (1.0, 8.0), (-1.0, -8.0), (-2.0, 1.0)):
-            y[:] = y0
+            copy_into(y, y0)
             y[j] += step * STEP
             rhs_rotating(0.0, y, p_rot, f)
             for i in range(8):
@@ -49,7 +49,9 @@ def balanced_jacobian(p_rot, alpha):
 def _jacobians(groups, alphas):
     out = np.empty((groups.shape[0], 8, 8))
     for i in range(groups.shape[0]):
-        out[i] = balanced_jacobian(groups[i], alphas[i])
+        J = balanced_jacobian(groups[i], alphas[i])
+        for row in range(8):
+            copy_into(out[i, row], J[row])
     return out
 
 

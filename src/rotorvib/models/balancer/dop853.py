@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from rotorvib.models.balancer.analysers import metrics_row, new_analysers
-from rotorvib.models.balancer.engine import (NON_FINITE, OK, all_finite, cannot_step,
+from rotorvib.models.balancer.engine import (NON_FINITE, OK, all_finite, cannot_step, copy_into,
                                              initial_step, rhs, sample_into,
                                              sampled_components)
 from rotorvib.models.balancer.settling import CHECK_EVERY, settled
@@ -221,8 +221,8 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
                 j_sample += 1
                 t_sample = t0 + j_sample * sample_dt
         t = t_new
-        y[:] = ynew
-        K[0, :] = K[_N853]
+        copy_into(y, ynew)
+        copy_into(K[0], K[_N853])
         factor = 10.0 if e == 0.0 else min(10.0, 0.9 * e ** -0.125)
         h *= min(1.0, factor) if rejected else factor
         rejected = False

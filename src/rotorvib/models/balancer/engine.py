@@ -226,6 +226,15 @@ def all_finite(x):
 
 
 @njit(cache=True, error_model="numpy")
+def copy_into(dst, src):
+    """``dst[:] = src`` for two vectors of one length, element by element: a slice assignment
+    makes numba compile its shape check's error message (string formatting), seconds of a
+    cold compile."""
+    for j in range(dst.size):
+        dst[j] = src[j]
+
+
+@njit(cache=True, error_model="numpy")
 def _hermite(theta, h, y0, f0, y1, f1, out, comps):
     """Cubic Hermite interpolation at ``t0 + theta h`` from values and slopes at both ends, of
     the components ``comps``."""
@@ -250,7 +259,7 @@ def sampled_components(ny, out):
 def sample_into(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
     r, force = radius_and_force(form, ys, p)
     if j < out.shape[0]:
-        out[j, :] = ys
+        copy_into(out[j], ys)
     observe(acc, t, r, force, r_threshold, f_threshold)
 
 
@@ -330,8 +339,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
             j_sample += 1
             t_sample = t0 + j_sample * sample_dt
         t = t_new
-        y[:] = ynew
-        f0[:] = k7
+        copy_into(y, ynew)
+        copy_into(f0, k7)
         h *= min(5.0, max(0.2, 0.9 * e ** -0.2)) if e > 0.0 else 5.0
         if j_sample >= j_check:
             j_check = j_sample + stop[CHECK_EVERY]
