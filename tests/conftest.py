@@ -5,20 +5,34 @@ from pathlib import Path
 import pytest
 
 from rotorvib.io.config import load_yaml, validate_config
+from rotorvib.io.fingerprint import import_closure
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 
 ROOT = Path(__file__).resolve().parents[1]
+#: The module of the balancer's compiled integrators (tests/workflow_runs.compile_the_engine).
+INTEGRATORS = "rotorvib.models.balancer.simulate"
 
 
 def pytest_collection_modifyitems(items):
     """test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), most of the
     suite's time, on one pytest-xdist worker (pyproject.toml) while the other takes the library
     tests; the other files that read the runs last, so that whichever worker is free then takes
-    them once the runs exist."""
+    them once the runs exist. Among the library tests, the files that can run the balancer's
+    compiled integrators (their imports reach them) come after the others: the first worker
+    compiles them for the runs meanwhile, and the second would wait on the compile lock."""
+    compiled = {}
+
+    def runs_integrators(path):
+        if path not in compiled:
+            compiled[path] = INTEGRATORS in import_closure(path, root=ROOT / "src")
+        return compiled[path]
+
     def order(item):
         if item.path.name == "test_workflow.py":
             return 0
-        return 2 if "runs" in item.fixturenames else 1
+        if "runs" in item.fixturenames:
+            return 3
+        return 2 if runs_integrators(item.path) else 1
     items.sort(key=order)
 
 
