@@ -1,5 +1,6 @@
 """Shared fixtures: paper C's rotor and Table 2 from the repository's configuration."""
 
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -20,12 +21,9 @@ def pytest_collection_modifyitems(items):
     them once the runs exist. Among the library tests, the files that can run the balancer's
     compiled integrators (their imports reach them) come after the others: the first worker
     compiles them for the runs meanwhile, and the second would wait on the compile lock."""
-    compiled = {}
-
+    @cache
     def runs_integrators(path):
-        if path not in compiled:
-            compiled[path] = INTEGRATORS in import_closure(path, root=ROOT / "src")
-        return compiled[path]
+        return INTEGRATORS in import_closure(path, root=ROOT / "src")
 
     def order(item):
         if item.path.name == "test_workflow.py":
