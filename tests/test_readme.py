@@ -48,3 +48,11 @@ def test_readme_cites_the_papers_as_data_papers_yaml_does():
     for paper in load_yaml(ROOT / "data/papers.yaml").values():
         assert " ".join(paper["citation"].split()) in text
         assert " ".join(paper["summary"].split()) in text
+
+
+def test_readme_types_no_measured_time():
+    """Timings are measured on the machine at hand by the benchmark scripts (benchmarks/), never
+    typed into the README, where they would go stale with the next speed-up."""
+    typed = re.findall(r"\d[\d.,]*\s?(?:CPU-s|CPU seconds|s of wall|(?:ms|s) (?:a|per) run"
+                       r"|[x×] (?:faster|slower))", (ROOT / "README.md").read_text())
+    assert typed == []
