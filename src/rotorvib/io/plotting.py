@@ -10,6 +10,10 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.font_manager import FontProperties  # noqa: E402
+from matplotlib.image import imsave  # noqa: E402
+from matplotlib.legend import Legend  # noqa: E402
+from matplotlib.text import Text  # noqa: E402
 
 STYLE = {
     "figure.figsize": (7.0, 4.3),
@@ -19,7 +23,6 @@ STYLE = {
     "axes.titlesize": 11,
     "axes.labelsize": 10,
     "legend.fontsize": 8.5,
-    "savefig.bbox": "tight",
     "figure.constrained_layout.use": True,
 }
 PAPER_STYLE = {"color": "crimson", "linestyle": "--", "linewidth": 1.2}
@@ -76,18 +79,66 @@ def parameters_text(configs: dict[str, dict], skip=("code",)) -> str:
     return "; ".join(parts)
 
 
-def state_parameters(fig, text: str, width: int = 150) -> None:
-    """Write ``text`` under the figure in small grey type, wrapped to ``width`` characters."""
-    fig.text(0.0, 0.0, "Parameters: " + "\n".join(textwrap.wrap(text, width)),
-             fontsize=6, color="0.35", ha="left", va="top", transform=fig.transFigure)
+def state_parameters(fig, text: str, fontsize: float = 6.0, pad: float = 0.05) -> None:
+    """Write ``text`` under the figure's contents in small grey type: the figure grows by a band
+    ``pad`` inches above and below the text, and its layout keeps to the area above. The text
+    is wrapped at word boundaries to the figure's width: at the mean width of its characters
+    as drawn, then narrower until every line fits."""
+    renderer = fig.canvas.get_renderer()
+    props = FontProperties(size=fontsize)
+    text = "Parameters: " + text
+
+    def width(line):
+        return renderer.get_text_width_height_descent(line, props, ismath=False)[0]
+
+    room = (fig.get_figwidth() - 2 * pad) * fig.dpi
+    chars = int(len(text) * room / width(text)) + 1
+    lines = [text]
+    while max(map(width, lines)) > room:
+        chars -= 1 + chars // 20
+        lines = textwrap.wrap(text, chars)
+    label = fig.text(pad / fig.get_figwidth(), 0.0, "\n".join(lines), fontproperties=props,
+                     color="0.35", ha="left", va="top")
+    band = label.get_window_extent(renderer).height / fig.dpi + 2 * pad
+    height = fig.get_figheight() + band
+    fig.set_figheight(height)
+    label.set_y((band - pad) / height)
+    if fig.get_layout_engine() is None:
+        fig.set_layout_engine("constrained")
+    fig.get_layout_engine().set(rect=(0.0, band / height, 1.0, 1.0 - band / height))
+
+
+def _texts_on_canvas(fig) -> bool:
+    """Whether the figure's texts and legends, and its axes' titles, labels, annotations and
+    legends, lie within its canvas once drawn (the tick labels are the layout's own)."""
+    shown = [*fig.texts, *fig.legends]
+    for ax in fig.axes:
+        shown += [a for a in ax.get_children() if isinstance(a, (Text, Legend))]
+        shown += [ax.xaxis.label, ax.yaxis.label]
+    canvas = fig.bbox.padded(0.5)
+    for artist in shown:
+        if not artist.get_visible() or (isinstance(artist, Text) and not artist.get_text()):
+            continue
+        box = artist.get_window_extent()
+        if not (canvas.contains(box.x0, box.y0) and canvas.contains(box.x1, box.y1)):
+            return False
+    return True
 
 
 def save(fig, path: str | Path) -> Path:
-    """Save as PNG without timestamps (byte-stable for equal content) and close."""
+    """Save as PNG without timestamps (byte-stable for equal content) and close. The figure is
+    laid out and drawn once and its canvas written (``savefig`` would lay it out in a pass of
+    its own first); a figure with a text beyond its canvas (a title wider than the figure) is
+    saved by ``savefig`` cropped to all it draws (``bbox_inches="tight"``) instead."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with plt.rc_context(STYLE):
-        fig.savefig(path, metadata={"Software": None})
+        fig.canvas.draw()
+        if _texts_on_canvas(fig):
+            imsave(path, np.asarray(fig.canvas.buffer_rgba()), format="png", dpi=fig.dpi,
+                   metadata={"Software": None})
+        else:
+            fig.savefig(path, bbox_inches="tight", metadata={"Software": None})
     plt.close(fig)
     return path
 

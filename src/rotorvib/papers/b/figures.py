@@ -267,7 +267,7 @@ def basin_distribution(basin, paper):
                                 arrowprops={"arrowstyle": "-", "color": color, "lw": 0.5})
     ax.set(xlabel="balance time (s)", ylabel="share of initial positions balanced by then",
            ylim=(0, 1.02), title="Balance time over random initial ball positions "
-           f"(eps/R = {basin.attrs['eps_bar']:g}); dots: the paper's ICs")
+           f"(eps/R = {basin.attrs['eps_bar']:g})\ndots: the paper's ICs")
     ax.legend(fontsize=7, loc="upper left")
     return fig
 

@@ -30,7 +30,7 @@ def fig3(tr, paper, t_at: float):
     ax.plot(t, -env, "k:", lw=1.2)
     paper_point(ax, t_at, paper["fig3_theta_2s"], f"{paper['fig3_theta_2s']} rad at t = {t_at:g} s")
     ax.set(xlabel="time t (s)", ylabel="disk twist theta (rad)",
-           title="Fig 3: rotor without absorber at resonance, Gamma0 cos(omega_n t) from rest")
+           title="Fig 3: rotor without absorber at resonance,\nGamma0 cos(omega_n t) from rest")
     ax.legend(loc="upper left")
     return fig
 
@@ -71,7 +71,7 @@ def linearisation(tr, paper):
 
 def fig5(fr, paper):
     """Fig 5: frequency response without absorber, Table 2 undamped and damped, GA optimum."""
-    fig, ax = figure(figsize=(7.0, 5.6))
+    fig, ax = figure(figsize=(7.4, 5.6))      # wide enough for the legend's two columns
     w = fr.w.values
     ax.semilogy(w, fr.D_none.values, "k", lw=1, label="no absorber")
     undamped = ax.semilogy(w, fr.D_table2_undamped.values, lw=1, label="Table 2, zero damping")
