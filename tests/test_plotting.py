@@ -1,6 +1,5 @@
 """Every figure states the parameters its datasets were made with (rotorvib.io.plotting)."""
 
-
 from PIL import Image
 
 from rotorvib.io.plotting import STYLE, figure, parameters_text, save, state_parameters
