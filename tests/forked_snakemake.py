@@ -8,13 +8,16 @@ process, through Snakemake's own command-line entry point (``snakemake.cli.main`
 code, standard output and standard error come back as one JSON line. A child starts from the
 state of a fresh ``snakemake`` process whose imports are done: nothing of the workflow (the
 Snakefile, the ``rotorvib`` modules it imports, their caches in memory) is loaded before the
-fork, so an edited file is read as a fresh command would read it.
+fork, so an edited file is read as a fresh command would read it. The libraries a command
+imports from outside the workflow's directory (jsonschema, Snakemake's lazy imports) the server
+imports after it, for the children that follow.
 
 :class:`ForkedSnakemake` starts and drives such a server from a test.
 """
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
 import subprocess
@@ -27,13 +30,15 @@ def _serve() -> None:
     import snakemake.cli
 
     snakemake.cli.get_argument_parser()  # collects the plugins, kept by their registries
+    workflow = Path.cwd().resolve()
     for line in sys.stdin:
-        with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        with (tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err,
+              tempfile.TemporaryFile("w+") as loaded):
             pid = os.fork()
             if pid == 0:
                 os.dup2(out.fileno(), 1)
                 os.dup2(err.fileno(), 2)
-                code = 1
+                before, code = set(sys.modules), 1
                 try:
                     snakemake.cli.main(json.loads(line))
                 except SystemExit as exit:
@@ -41,12 +46,27 @@ def _serve() -> None:
                 finally:
                     sys.stdout.flush()
                     sys.stderr.flush()
+                    loaded.write("\n".join(_libraries(set(sys.modules) - before, workflow)))
+                    loaded.flush()
                     os._exit(code)
             code = os.waitstatus_to_exitcode(os.waitpid(pid, 0)[1])
             out.seek(0)
             err.seek(0)
             print(json.dumps({"returncode": code, "stdout": out.read(), "stderr": err.read()}),
                   flush=True)
+            loaded.seek(0)
+            for name in loaded.read().split():
+                importlib.import_module(name)
+
+
+def _libraries(names, workflow: Path) -> list[str]:
+    """The modules among ``names`` loaded from files outside the ``workflow`` directory: the
+    libraries a command imported (jsonschema for the configuration, Snakemake's own lazy
+    imports), which the server then imports for the next children; the workflow's code
+    (its ``src``, rules and scripts) stays unloaded."""
+    return sorted(name for name in names
+                  if (path := getattr(sys.modules.get(name), "__file__", None))
+                  and not Path(path).resolve().is_relative_to(workflow))
 
 
 class ForkedSnakemake:
