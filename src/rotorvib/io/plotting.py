@@ -81,9 +81,9 @@ def parameters_text(configs: dict[str, dict], skip=("code",)) -> str:
 
 def state_parameters(fig, text: str, fontsize: float = 6.0, pad: float = 0.05) -> None:
     """Write ``text`` under the figure's contents in small grey type: the figure grows by a band
-    ``pad`` inches above and below the text, and its layout keeps to the area above. The text
-    is wrapped at word boundaries to the figure's width: at the mean width of its characters
-    as drawn, then narrower until every line fits."""
+    ``pad`` inches above and below the text, and its layout (constrained, as :func:`figure`
+    makes it) keeps to the area above. The text is wrapped at word boundaries to the figure's
+    width: at the mean width of its characters as drawn, then narrower until every line fits."""
     renderer = fig.canvas.get_renderer()
     props = FontProperties(size=fontsize)
     text = "Parameters: " + text
@@ -103,8 +103,6 @@ def state_parameters(fig, text: str, fontsize: float = 6.0, pad: float = 0.05) -
     height = fig.get_figheight() + band
     fig.set_figheight(height)
     label.set_y((band - pad) / height)
-    if fig.get_layout_engine() is None:
-        fig.set_layout_engine("constrained")
     fig.get_layout_engine().set(rect=(0.0, band / height, 1.0, 1.0 - band / height))
 
 
