@@ -6,7 +6,7 @@ import json
 import numpy as np
 import xarray as xr
 
-from ro_crate import validate_crate
+from ro_crate import each_query_parsed_once, validate_crate
 from rotorvib.io.crate import crate_metadata, describe
 
 FILES = {"Snakefile": "rule all:\n", "LICENSE": "MIT\n", "CITATION.cff": "cff-version: 1.2.0\n",
@@ -71,3 +71,29 @@ def test_the_crate_describes_the_run_and_each_file(tmp_path, monkeypatch):
     assert "license" not in fig  # the data inherit the crate's CC-BY-4.0
     assert graph["LICENSE"]["license"] == {"@id": "https://spdx.org/licenses/MIT"}
     assert graph["./"]["license"] == {"@id": "https://spdx.org/licenses/CC-BY-4.0"}
+
+
+def test_a_query_prepared_once_answers_as_its_text_at_every_binding():
+    """The validator's shortcut (tests/ro_crate.py): a SPARQL constraint of pyshacl's shape,
+    ``$this`` bound to each focus node in turn, gives the same rows prepared once as parsed
+    at every call, and is prepared once."""
+    from rdflib import Graph, Literal, Namespace
+
+    ex = Namespace("http://example.org/")
+    graph = Graph()
+    for i in range(6):
+        graph.add((ex[f"file{i}"], ex.size, Literal(i)))
+        if i % 2:
+            graph.add((ex[f"file{i}"], ex.name, Literal(f"f{i}")))
+    text = ("SELECT $this ?value WHERE { $this <http://example.org/size> ?value . "
+            "FILTER NOT EXISTS { $this <http://example.org/name> ?name } }")
+
+    def rows():
+        return [sorted(map(tuple, graph.query(text, initBindings={"this": ex[f"file{i}"]})))
+                for i in range(6)]
+
+    parsed_each_time = rows()
+    with each_query_parsed_once() as prepared:
+        assert rows() == parsed_each_time
+        assert len(prepared) == 1
+    assert [len(r) for r in parsed_each_time] == [1, 0, 1, 0, 1, 0]
