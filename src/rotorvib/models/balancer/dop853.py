@@ -14,6 +14,7 @@ import numpy as np
 from numba import njit
 
 from rotorvib.models.balancer.analysers import metrics_row, new_analysers
+from rotorvib.models.balancer.borrowed import borrowed
 from rotorvib.models.balancer.engine import (NON_FINITE, OK, all_finite, cannot_step, copy_into,
                                              initial_step, rhs, sample_into,
                                              sampled_components)
@@ -56,7 +57,7 @@ def _dense_weighted(d, K, j):
             d[15] * K[15, j])
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _dop853_stages(form, p, t, y, h, K, A, C, first, last, ytmp):
     """Stages ``first .. last - 1`` of DOP853 into the rows of ``K`` (row 0: f(t, y)): stage
     ``s`` is ``K[s] = f(t + C[s] h, y + h sum_{q < s} A[s, q] K[q])``, for ``s`` in 1-11 (the
@@ -144,7 +145,7 @@ def _dop853_error(K, y, ynew, h, rtol, atol, E3, E5):
     return abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * ny)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp, comps):
     """The seven coefficient rows ``F`` of DOP853's dense output over the step (after the three
     extra stages), for the components ``comps``."""
@@ -158,7 +159,7 @@ def _dop853_dense(form, p, t, h, y, ynew, K, A, C, D, F, ytmp, comps):
             F[3 + r, j] = h * _dense_weighted(D[r], K, j)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _dop853_eval(theta, y, F, out, comps):
     """DOP853's dense output at ``t + theta h``, components ``comps``: ``y + theta (F0 + theta'
     (F1 + theta (F2 + theta' (F3 + theta (F4 + theta' (F5 + theta F6))))))``, ``theta' =
@@ -176,13 +177,26 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
     samples, analysers, metrics and statuses; step control as in Hairer's code (safety 0.9,
     factors 0.2 to 10, no growth right after a rejection) and the same early stop."""
     ny = y0.size
-    y = y0.copy()
-    K = np.empty((_N853_DENSE, ny))
-    F = np.empty((7, ny))
-    ytmp, ynew, ys = np.empty(ny), np.empty(ny), np.empty(ny)
-    comps = sampled_components(ny, out)
+    return _integrate_dop853(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold,
+                             f_threshold, max_steps, out, stop, A, B, C, E3, E5, D, y0.copy(),
+                             np.empty((_N853_DENSE, ny)), np.empty((7, ny)),
+                             np.empty((3, ny)), sampled_components(ny, out), new_analysers())
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _integrate_dop853(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
+                      max_steps, out, stop, A, B, C, E3, E5, D, y, K, F, work, comps, acc):
+    """:func:`integrate_dop853` from the state ``y`` (overwritten) with the stages ``K``, the
+    dense-output rows ``F`` and the rows of ``work`` as its vectors, on borrowed views of its
+    arrays (:mod:`borrowed`)."""
+    p, out, stop, A, B, C, E3, E5, D = (borrowed(p), borrowed(out), borrowed(stop), borrowed(A),
+                                        borrowed(B), borrowed(C), borrowed(E3), borrowed(E5),
+                                        borrowed(D))
+    y, K, F, work, comps, acc = (borrowed(y), borrowed(K), borrowed(F), borrowed(work),
+                                 borrowed(comps), borrowed(acc))
+    ny = y.size
+    ytmp, ynew, ys = work[0], work[1], work[2]
     rhs(form, t0, y, p, K[0])
-    acc = new_analysers()
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(K[0]))):
         return metrics_row(acc, NON_FINITE, 0, t0, r_threshold)
     sample_into(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)

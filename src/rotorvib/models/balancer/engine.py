@@ -33,6 +33,7 @@ import numpy as np
 from numba import njit
 
 from rotorvib.models.balancer.analysers import metrics_row, new_analysers, observe
+from rotorvib.models.balancer.borrowed import borrowed
 from rotorvib.models.balancer.kinematics import disk_kinematics, speed
 from rotorvib.models.balancer.settling import CHECK_EVERY, settled
 
@@ -133,7 +134,7 @@ def rhs_rotating(t, y, p, dy):
     dy[n + 3] = av + gv
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def rhs(form, t, y, p, dy):
     if form == FIXED:
         rhs_fixed(t, y, p, dy)
@@ -255,7 +256,7 @@ def sampled_components(ny, out):
     return np.array([0, 1, ny // 2, ny // 2 + 1])
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def sample_into(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
     r, force = radius_and_force(form, ys, p)
     if j < out.shape[0]:
@@ -279,14 +280,23 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     (:mod:`settling`) shows that no later sample can change a metric.
     """
     ny = y0.size
-    y = y0.copy()
-    f0 = np.empty(ny)
+    return _integrate(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
+                      max_steps, out, stop, y0.copy(), np.empty((11, ny)),
+                      sampled_components(ny, out), new_analysers())
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _integrate(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold, max_steps,
+               out, stop, y, work, comps, acc):
+    """:func:`integrate` from the state ``y`` (overwritten), with the rows of ``work`` as its
+    vectors, on borrowed views of its arrays (:mod:`borrowed`)."""
+    p, out, stop, y, work, comps, acc = (borrowed(p), borrowed(out), borrowed(stop), borrowed(y),
+                                         borrowed(work), borrowed(comps), borrowed(acc))
+    f0, k2, k3, k4, k5, k6, k7, ytmp, ynew, err, ys = (work[0], work[1], work[2], work[3],
+                                                       work[4], work[5], work[6], work[7],
+                                                       work[8], work[9], work[10])
+    ny = y.size
     rhs(form, t0, y, p, f0)
-    k2, k3, k4, k5, k6, k7 = (np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny),
-                              np.empty(ny), np.empty(ny))
-    ytmp, ynew, err, ys = np.empty(ny), np.empty(ny), np.empty(ny), np.empty(ny)
-    comps = sampled_components(ny, out)
-    acc = new_analysers()
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f0))):
         return metrics_row(acc, NON_FINITE, 0, t0, r_threshold)
     sample_into(form, p, acc, out, 0, t0, y, r_threshold, f_threshold)
