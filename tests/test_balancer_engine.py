@@ -6,6 +6,7 @@ import pytest
 from scipy.integrate import ode, solve_ivp
 
 from rotorvib.models.balancer import dop853, engine, settling, simulate
+from rotorvib.models.balancer.borrowed import borrowed
 from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
                                                  fixed_parameters, fixed_state, rotating_parameters)
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
@@ -291,3 +292,34 @@ def test_dop853_sums_written_out_equal_the_full_tableau_sums_to_the_bit():
     for r in range(4):
         np.testing.assert_array_equal([dop853._dense_weighted(D[r], K, j) for j in range(8)],
                                       full(D[r], 16))
+
+
+def test_a_borrowed_view_aliases_its_array_and_holds_no_reference():
+    """The integrators' borrowed views (rotorvib.models.balancer.borrowed) read and write their
+    array's memory with its shape and strides, a strided one and its row views included, and
+    carry no memory record: returned to Python one has no base keeping the memory alive, where
+    numba's own view of the same array has one."""
+    from numba import njit
+
+    @njit
+    def double_through_borrowed(a):
+        b = borrowed(a)
+        for i in range(b.shape[0]):
+            row = b[i]
+            for j in range(row.size):
+                row[j] *= 2.0
+        return b.shape, b.strides
+
+    @njit
+    def views(a):
+        return a[1:], borrowed(a)[1:]
+
+    a = np.arange(24.0).reshape(4, 6)
+    strided = a[::2, 1::2]
+    assert double_through_borrowed(strided) == (strided.shape, strided.strides)
+    expected = np.arange(24.0).reshape(4, 6)
+    expected[::2, 1::2] *= 2.0
+    assert np.array_equal(a, expected)
+    own, lent = views(a)
+    assert np.shares_memory(lent, a) and np.array_equal(lent, a[1:])
+    assert own.base is not None and lent.base is None
