@@ -4,10 +4,10 @@ numba counts the references to every array it passes around, with an atomic add 
 on the array's memory record (its meminfo) each time a compiled function binds an array argument,
 takes a row view (``K[s]``) or inlines a helper; it removes only the pairs it can prove
 redundant, not those around a call that may raise. In the integrators' loops that was about a
-hundred atomic pairs per step, 40 % of a paper B run-up's time (perf: ``NRT_incref`` and
-``NRT_decref``), and the batch threads contended for the records of the arrays they share (the
-tableau). A view made by :func:`borrowed` has no memory record (a null meminfo), which numba's
-counting skips after one comparison.
+hundred atomic pairs per step, the largest cost of a run after the right-hand side (``perf
+record`` shows it as ``NRT_incref`` and ``NRT_decref``), and the batch threads contended for the
+records of the arrays they share (the tableau). A view made by :func:`borrowed` has no memory
+record (a null meminfo), which numba's counting skips after one comparison.
 
 A borrowed view owns nothing: it is valid only while its owner lives. The integrators borrow
 their own arguments, which their caller holds for the whole call, and never return a view.
