@@ -22,11 +22,14 @@ import hashlib
 import json
 import math
 import re
+from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import jsonschema
 import yaml
+
+if TYPE_CHECKING:
+    import jsonschema
 
 
 class ConfigError(ValueError):
@@ -275,11 +278,17 @@ def _check_extensions(config, schema: dict, root: dict, path=()) -> list[str]:
     return problems
 
 
-#: JSON Schema validator whose "integer" is an int (401.0 is not an integer here).
-_Validator = jsonschema.validators.extend(
-    jsonschema.Draft202012Validator,
-    type_checker=jsonschema.Draft202012Validator.TYPE_CHECKER.redefine(
-        "integer", lambda _, value: isinstance(value, int) and not isinstance(value, bool)))
+@cache
+def _validator_class():
+    """The JSON Schema validator whose "integer" is an int (401.0 is not an integer here).
+    jsonschema is imported here, on the first validation: a workflow job reads its part of a
+    configuration that Snakemake validated, and never pays for the import."""
+    import jsonschema
+
+    return jsonschema.validators.extend(
+        jsonschema.Draft202012Validator,
+        type_checker=jsonschema.Draft202012Validator.TYPE_CHECKER.redefine(
+            "integer", lambda _, value: isinstance(value, int) and not isinstance(value, bool)))
 
 
 def validate_config(config: dict, schema: dict) -> dict:
@@ -289,7 +298,7 @@ def validate_config(config: dict, schema: dict) -> dict:
     """
     filled = copy.deepcopy(config)
     _fill_defaults(filled, schema)
-    errors = sorted(_Validator(schema).iter_errors(filled),
+    errors = sorted(_validator_class()(schema).iter_errors(filled),
                     key=lambda e: list(map(str, e.absolute_path)))
     messages = _non_finite(filled) + [_describe(e) for e in errors]
     if not messages:
