@@ -4,7 +4,8 @@ Dormand-Prince 5(4) integrator (DOPRI5) that feeds samples to the in-loop analys
 8th-order integrator, ``batch`` runs either in parallel.
 
 Everything here is numba-compiled with ``cache=True``; model parameters travel as arrays (never as
-globals, which a cache would freeze).  All compiled code of the package uses numba's
+globals, which a cache would freeze), and the integrators' step loops work on borrowed views of
+them (``borrowed``), which numba keeps no reference count of.  All compiled code of the package uses numba's
 ``error_model="numpy"``: a division by zero gives an infinity or NaN (which the integrators report
 as a non-finite state, never as a number) instead of a check and a Python exception at every
 division, which made the integrators about 10 % slower.  Two forms of the same physics:
