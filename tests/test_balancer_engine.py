@@ -3,6 +3,7 @@ kinematic conventions and across the fixed and rotating frames."""
 
 import numpy as np
 import pytest
+from numba import njit
 from scipy.integrate import ode, solve_ivp
 
 from rotorvib.models.balancer import dop853, engine, settling, simulate
@@ -299,8 +300,6 @@ def test_a_borrowed_view_aliases_its_array_and_holds_no_reference():
     array's memory with its shape and strides, a strided one and its row views included, and
     carry no memory record: returned to Python one has no base keeping the memory alive, where
     numba's own view of the same array has one."""
-    from numba import njit
-
     @njit
     def double_through_borrowed(a):
         b = borrowed(a)
