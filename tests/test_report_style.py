@@ -1,0 +1,29 @@
+"""The report stylesheet (workflow/report/style.css) overrides a view of the pinned Snakemake's
+report by its classes: it fails here, not silently in a browser, when Snakemake's template
+changes them."""
+
+import re
+from pathlib import Path
+
+import snakemake
+
+from conftest import ROOT
+
+TEMPLATE = Path(snakemake.__file__).parent / "report/html_reporter/template/components"
+
+
+def test_the_stylesheet_selects_snakemakes_content_view():
+    css = (ROOT / "workflow/report/style.css").read_text()
+    selectors = re.findall(r"^([.\w-]+(?:\.[\w-]+)*)\s*\{", css, flags=re.MULTILINE)
+    assert selectors, "no rule in the stylesheet"
+    template = (TEMPLATE / "content.js").read_text()
+    class_lists = [set(c.split()) for c in re.findall(r"className:\s*\"([^\"]+)\"", template)]
+    for selector in selectors:
+        wanted = set(selector.strip(".").split("."))
+        assert any(wanted <= classes for classes in class_lists), (
+            f"{selector} matches no element of the pinned Snakemake's content view")
+
+
+def test_the_default_profile_ships_the_stylesheet():
+    profile = (ROOT / "profiles/default/config.yaml").read_text()
+    assert re.search(r"^report-stylesheet:\s*workflow/report/style.css\s*$", profile, re.MULTILINE)
