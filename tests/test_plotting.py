@@ -1,8 +1,13 @@
-"""Every figure states the parameters its datasets were made with (rotorvib.io.plotting)."""
+"""Figures (rotorvib.io.plotting): the parameters a figure depends on, what it draws read off
+its artists, and its PNG and SVG files, byte-stable."""
 
+import numpy as np
+import xarray as xr
 from PIL import Image
 
-from rotorvib.io.plotting import STYLE, figure, parameters_text, save, state_parameters
+from rotorvib.io.plotting import (
+    INFORMATIVE_INTERVAL, STYLE, drawn_key, figure, paper_vline, parameters_text, save,
+    sensitivity)
 
 
 def test_parameters_are_grouped_and_differences_named_by_dataset():
@@ -17,38 +22,52 @@ def test_parameters_are_grouped_and_differences_named_by_dataset():
     assert "study (mass): range = 0.006..0.02 (15 points)" in text
 
 
-def _drawn(title="t", text="case: mu = 0.01"):
+def test_a_figure_states_its_own_cases_and_none_of_the_other_outputs():
+    """A dataset made for several figures records each one's case: Fig 7 states its own, and
+    the Table 2 cases only where it names Table 2."""
+    config = {"responses": {"fig6": {"beta": 0.0}, "fig7": {"beta": 1.0}},
+              "table2": {"speed": 220.0}, "machine": {"k": 1e4}}
+    assert parameters_text({"tr": config}, keep={"fig7"}) == \
+        "responses: fig7 (beta = 1); machine: k = 10000"
+    assert parameters_text({"tr": config}, keep={"fig16", "table2"}) == \
+        "table2: speed = 220; machine: k = 10000"
+
+
+def test_the_key_says_what_is_drawn_and_nothing_that_is_not():
+    fig, ax = figure()
+    ax.plot([0, 1], [0, 1], "-", label="IC1, printed")
+    ax.plot([0, 1], [1, 0], "--", label="IC1, consistent")
+    ax.legend()
+    assert drawn_key(fig) == ["Solid lines: the paper's printed kinematics (the reproduction); "
+                              "dashed: the consistent kinematics."]
+    paper_vline(ax, 0.5, "9.04 s")
+    ax.legend()
+    assert drawn_key(fig)[0] == "The paper's values drawn (legend \"paper\"): 9.04 s."
+    bare, ax = figure()
+    ax.plot([0, 1], [0, 1], "--", label="IC1, printed")   # not the styles the key would claim
+    ax.plot([0, 1], [1, 0], "--", label="IC1, consistent")
+    ax.legend()
+    assert drawn_key(bare) == []
+
+
+def _drawn(title="t"):
     fig, ax = figure()
     ax.plot([0, 1], [0, 1])
     ax.set(title=title, xlabel="x (m)")
-    state_parameters(fig, text)
     return fig, ax
 
 
-def test_the_statement_is_drawn_under_the_axes_on_the_canvas(tmp_path):
-    """The figure grows by the statement's band, the axes (their labels included) keep above
-    it, and the canvas is written as it was drawn, byte-stable."""
-    fig, ax = _drawn()
-    assert [t.get_text() for t in fig.texts] == ["Parameters: case: mu = 0.01"]
-    height = fig.get_figheight()
-    assert height > STYLE["figure.figsize"][1]
-    path = save(fig, tmp_path / "f.png")
-    label = fig.texts[0].get_window_extent()
-    assert 0 <= label.y0 and label.y1 <= ax.get_tightbbox().y0 and label.x1 <= fig.bbox.x1
+def test_a_figure_is_written_as_png_and_svg_byte_stable(tmp_path):
+    path = save(_drawn()[0], tmp_path / "f.png")
     with Image.open(path) as png:
         assert png.size == (round(STYLE["figure.figsize"][0] * STYLE["figure.dpi"]),
-                            round(height * STYLE["figure.dpi"]))
-    assert save(_drawn()[0], tmp_path / "g.png").read_bytes() == path.read_bytes()
-
-
-def test_a_long_statement_is_wrapped_to_the_width_of_the_figure():
-    fig, _ = _drawn(text="; ".join(f"parameter_{i}: {i / 7:.6f}" for i in range(60)))
-    lines = fig.texts[0].get_text().split("\n")
-    renderer = fig.canvas.get_renderer()
-    widths = [renderer.get_text_width_height_descent(line, fig.texts[0].get_fontproperties(),
-                                                     ismath=False)[0] for line in lines]
-    assert len(lines) > 3 and max(widths) <= fig.bbox.width
-    assert min(widths[:-1]) > 0.8 * fig.bbox.width        # lines filled, not cut short
+                            round(STYLE["figure.figsize"][1] * STYLE["figure.dpi"]))
+    assert STYLE["figure.dpi"] >= 150
+    svg = path.with_suffix(".svg").read_text()
+    assert svg.startswith("<?xml") and "<dc:date>" not in svg
+    again = save(_drawn()[0], tmp_path / "g.png")
+    assert again.read_bytes() == path.read_bytes()
+    assert again.with_suffix(".svg").read_bytes() == path.with_suffix(".svg").read_bytes()
 
 
 def test_a_title_wider_than_the_figure_is_kept_whole(tmp_path):
@@ -57,3 +76,32 @@ def test_a_title_wider_than_the_figure_is_kept_whole(tmp_path):
     width = fig.bbox.width
     with Image.open(save(fig, tmp_path / "f.png")) as png:
         assert png.size[0] > width
+
+
+def _study(balanced, times, conf):
+    """A sensitivity dataset of two quantities (a time, whether it balances) over 2 inputs."""
+    n = len(times)
+    return xr.Dataset(
+        {"y": (("quantity", "sample"), np.array([times, balanced], float)),
+         "ST": (("quantity", "n", "input"), np.full((2, 1, 2), 0.4)),
+         "ST_conf": (("quantity", "n", "input"), np.array([[conf], [conf]], float)),
+         "band": (("quantity", "percentile"), np.array([[1.0, 9.0], [0.0, 1.0]])),
+         "nominal": ("quantity", [3.0, 1.0])},
+        coords={"input_name": ("input", ["a", "b"]),
+                "quantity_name": ("quantity", ["balance_time", "balanced"]),
+                "quantity_units": ("quantity", ["s", "1"]), "n_base": ("n", [8]),
+                "percentile": ("percentile", [5.0, 95.0]), "sample": np.arange(n)})
+
+
+def test_the_uncertainty_figure_counts_capped_runs_apart_and_draws_decided_indices_only():
+    """A time capped at t_end is not drawn as a value: the distribution holds the balanced
+    runs, the others are counted in its title; an index whose interval is too wide to say
+    anything is named as undecided instead of drawn."""
+    ds = _study([1, 1, 1, 0], [2.0, 3.0, 4.0, 10.0], [0.05, INFORMATIVE_INTERVAL])
+    fig = sensitivity(ds, {"balance_time": 5.0}, "title")
+    indices, times = fig.axes[0], fig.axes[1]
+    assert len(indices.patches) == 1                       # input a only
+    assert [t.get_text() for t in indices.texts] == ["undecided"]
+    assert sum(bar.get_height() for bars in times.containers for bar in bars) == 3
+    assert times.get_title() == "not balanced by t_end: 1 of 4"
+    assert fig.axes[3].get_title() == "3 of 4 input points balance"

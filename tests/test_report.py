@@ -10,7 +10,8 @@ from rotorvib import report
 
 # Snakemake appends link targets for each category to every caption and to the landing page.
 LINKS = "\n\n" + "\n".join(f".. _{name}: javascript:app.showCategory('{name}')"
-                          for name in ("Paper A", "Paper B", "Paper C", "Comparison")) + "\n"
+                          for name in ("Summary", "Paper A", "Paper B", "Paper C",
+                                       "Comparison")) + "\n"
 
 
 def html(rst: str) -> str:
@@ -48,13 +49,29 @@ def test_comparison_items_name_figures_and_tables(item, expected):
     assert report.numbers_of_item(item) == expected
 
 
-def test_the_report_order_is_the_papers_then_the_outputs_beyond_it():
-    names = ["fig2", "fig10", "basin", "fig4_5", "kinematics", "fig16"]
-    declared = {name: i for i, name in enumerate(names)}
-    others = {"basin": 0, "kinematics": 1}
-    keys = {name: report.order_key(name, others.get(name, 0)) for name in declared}
-    ordered = sorted(names, key=keys.get)  # the report compares the labels as strings
-    assert ordered == ["fig2", "fig4_5", "fig10", "fig16", "basin", "kinematics"]
+def test_the_report_lists_sort_in_the_papers_order_and_read_as_labels():
+    """The report sorts a list by its labels as strings: a figure space pads the numbers below
+    10, which a browser's localeCompare collates before the digits (the order is checked in
+    Chromium, test_delivery.py); each label reads as the output."""
+    labels = {name: report.entry_label(name, "figure", ("GA", "Section 9"))
+              for name in ("fig2", "fig4_5", "fig10", "ga_convergence")}
+    assert labels["fig2"] == "Fig \u20072" and labels["fig10"] == "Fig 10"
+    assert labels["fig4_5"] == "Fig \u20074\u20135"
+    assert labels["ga_convergence"] == "GA convergence (section 9)"
+    assert report.entry_label("uncertainty_table2", "figure") == "Uncertainty Table 2"
+    assert report.entry_label("table1", "table") == "Table \u20071"
+
+
+def test_outputs_beyond_the_paper_have_their_own_subcategory():
+    assert report.subcategory("Beyond the paper: the basin.", "figure") == report.BEYOND
+    assert report.subcategory("Balance time against beta.", "figure") == "Figures"
+    assert report.subcategory("Table 2 beside the GA.", "table") == "Tables"
+
+
+def test_a_declaration_names_the_outputs_whose_cases_it_draws():
+    assert report.names_in("the three (beta, m) cases of Table 2, as in Figs 8-10") == {
+        "table2", "fig8", "fig9", "fig10"}
+    assert report.names_in("the basin map") == set()
 
 
 def test_rows_are_tied_to_every_figure_their_item_names_and_to_declared_items():
@@ -69,14 +86,14 @@ def test_rows_are_tied_to_every_figure_their_item_names_and_to_declared_items():
 
 
 def test_a_caption_states_each_row_with_its_verdict_and_renders_cleanly():
-    rows = [row(explanation="envelope | threshold *crossing*"),
+    rows = [row(explanation="printed: envelope | consistent: threshold *crossing*"),
             row(verdict="SUPPORTED", paper_value="", reproduced="", rel_error="", unit="",
                 quantity="claim_q", explanation="holds under printed")]
     text = report.caption("Paper B, Fig 8", "Balance time against beta_i.", rows,
                           {("B", "q"): "balance time of the Fig 7 case"})
     body = html(text)
     assert "<strong>MAJOR</strong> (Fig 8) balance time of the Fig 7 case: paper 9.04 s, " \
-           "reproduced 5.98 s (33.9 % off). envelope | threshold *crossing*" in body
+           "reproduced 5.98 s (33.9 % off). printed: envelope; consistent: threshold *crossing*" in body
     assert "<strong>SUPPORTED</strong> (Fig 8) claim_q. holds under printed" in body
     assert "Balance time against beta_i." in body
     assert "states no value" in html(report.caption("t", "shows", []))
@@ -93,26 +110,34 @@ def test_a_caption_file_renders_as_written(tmp_path):
     assert rendered == text
 
 
-def test_the_landing_page_totals_and_findings_follow_the_rows():
+def test_the_summary_and_the_landing_page_follow_the_rows():
     table = [row(paper="A", verdict="MATCH", quantity="a1", item="Fig 2"),
              row(paper="B", verdict="MAJOR", quantity="b1", rel_error="0.2",
                  explanation="first clause; second"),
              row(paper="B", verdict="MAJOR", quantity="b2", rel_error="0.5",
                  explanation="eq. (20) gives 3. Then more"),
              row(paper="B", verdict="NOT SUPPORTED", quantity="b3", item="Fig 6",
-                 paper_value="", reproduced="", rel_error="", explanation="never settles")]
-    papers = {p: {"citation": f"Citation {p}.", "summary": f"Summary {p}."} for p in "ABC"}
-    text = report.landing_page(table, {("B", "b2"): "the b2 claim"}, papers, "discrepancies (1)")
-    body = html(text)
+                 paper_value="", reproduced="", rel_error="",
+                 explanation="not under printed, consistent: printed: share 0.3 | consistent: "
+                             "share 0.4")]
+    papers = {p: {"title": f"Title {p}", "citation": f"Citation {p}.", "summary": f"Summary {p}."}
+              for p in "ABC"}
+    body = html(report.summary_text(table, {("B", "b2"): "the b2 claim"}, papers,
+                                    "discrepancies (1)"))
     counts = report.verdict_counts(table)
     assert counts["B"]["MAJOR"] == 2 and counts["A"]["MATCH"] == 1
     assert "<strong>Paper B, Fig 8 (2 MAJOR)</strong> the b2 claim: paper 9.04 s, reproduced " \
-           "5.98 s (50.0 % off). eq. (20) gives 3" in body  # the larger miss, its first clause
-    assert "Then more" not in body and "first clause" not in body
-    assert "<strong>Paper B, Fig 6 (1 NOT SUPPORTED)</strong> b3. never settles" in body
+           "5.98 s (50.0 % off). eq. (20) gives 3. Then more" in body  # the larger miss, whole
+    assert "first clause" not in body
+    assert "<strong>Paper B, Fig 6 (1 NOT SUPPORTED)</strong> b3. not under printed, " \
+           "consistent: printed: share 0.3; consistent: share 0.4" in body  # its numbers kept
     assert "Paper A, Fig 2" not in body  # a MATCH is not a finding
-    assert "Citation C. Summary C." in body
-    assert body.count("javascript:app.showCategory") >= 3  # links into each paper
+    assert "Citation C. Summary C." in body and "discrepancies (1)" in body
+    landing = html(report.landing_page(table, papers))
+    assert "4 stated values and claims" in landing
+    assert "printed numbers (3): MATCH 1, MINOR 0, MAJOR 2" in landing
+    assert "Title C" in landing and "Citation C" not in landing
+    assert landing.count("javascript:app.showCategory") == 5  # summary, comparison, papers
 
 
 def test_check_counts_summarise_a_status_column():

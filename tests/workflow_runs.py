@@ -106,6 +106,25 @@ def job_records(cwd: Path) -> list[dict]:
     return [json.loads(p.read_text()) for p in sorted((cwd / RECORDS).glob("*.json"))]
 
 
+def run_block_jobs(cwd: Path, recorded: list[dict]) -> list[dict]:
+    """The jobs the recorder cannot see (``run:`` blocks run inside Snakemake's own process),
+    as job records from Snakemake's ``--detailed-summary`` of the run; they load no library
+    module of their own."""
+    run = snakemake(cwd, "--detailed-summary", *REDUCED)
+    lines = run.stdout.splitlines()
+    header = lines[0].split("\t")
+    seen = {r["rule"] for r in recorded}
+    jobs: dict[str, dict] = {}
+    for line in lines[1:]:
+        row = dict(zip(header, line.split("\t")))
+        if "\t" not in line or row["rule"] in seen or row["rule"] == "-":
+            continue
+        job = jobs.setdefault(row["rule"], {"rule": row["rule"], "output": [], "modules": [],
+                                            "input": row["input-file(s)"].split(",")})
+        job["output"].append(row["output_file"])
+    return list(jobs.values())
+
+
 def digests(root: Path) -> dict[str, str]:
     return {p.relative_to(root).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
             for p in sorted((root / "results").glob("paper_*/**/*"))

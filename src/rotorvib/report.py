@@ -45,10 +45,22 @@ def numbers_of_item(item: str) -> tuple[str, tuple[int, ...]]:
     return kind, tuple(range(first, last + 1))
 
 
-def label(name: str, kind: str = "figure") -> str:
+def names_in(text: str) -> set[str]:
+    """The output names of the figures and tables a text names: "Table 2's cases, as Figs
+    8-10" -> {"table2", "fig8", "fig9", "fig10"}."""
+    names = set()
+    for match in re.finditer(r"\b(Figs?|Tables?)\s+(\d+)(?:\s*[-–]\s*(\d+))?", text):
+        kind, numbers = numbers_of_item(match.group(0))
+        names |= {f"{'fig' if kind == 'figure' else 'table'}{n}" for n in numbers}
+    return names
+
+
+def label(name: str, kind: str | None = None) -> str:
     """Reader's name of an output: ``fig4_5`` -> "Figs 4-5", ``table2`` -> "Table 2"; names
-    beyond the paper keep their words ("error study")."""
+    beyond the paper keep their words ("error study"). ``kind`` ("figure" or "table") names
+    the output's kind where its name does not."""
     numbers = numbers_of_name(name)
+    kind = kind or ("table" if name.startswith("table") else "figure")
     word = {"figure": "Fig", "table": "Table"}[kind]
     if not numbers:
         return name.replace("_", " ")
@@ -57,12 +69,36 @@ def label(name: str, kind: str = "figure") -> str:
     return f"{word}s {numbers[0]}-{numbers[-1]}"
 
 
-def order_key(name: str, others_before: int) -> str:
-    """A sort key in the paper's order (the report sorts its entries by this string): the
-    paper's outputs by number ("02" ... "16"), then those beyond the paper in their declared
-    order ("beyond 1", ...; ``others_before`` of them are declared before this one)."""
+# The report lists the results of a view sorted by their label as strings (JavaScript's
+# localeCompare). A number below 10 is padded with a figure space (U+2007, the width of a
+# digit), which collates before the digits: "Fig  2" < "Fig 10", and the numbers line up.
+_PAD = "\u2007"
+_WORDS = {"ga": "GA", "r": "R"}
+
+
+def entry_label(name: str, kind: str, items: tuple[str, ...] = ()) -> str:
+    """The label of an output in the report's lists, which sort by it: ``fig8`` -> "Fig  8",
+    ``fig4_5`` -> "Fig  4-5" (padded, :data:`_PAD`); other outputs by their words, with the
+    paper's section they belong to (``items``): ``ga_convergence``, ("GA", "Section 9") ->
+    "GA convergence (section 9)", ``uncertainty_table2`` -> "Uncertainty Table 2"."""
     numbers = numbers_of_name(name)
-    return f"{numbers[0]:02d}" if numbers else f"beyond {others_before + 1}"
+    if numbers:
+        word = {"figure": "Fig", "table": "Table"}[kind]
+        return f"{word} {numbers[0]:{_PAD}>2}" + (f"\u2013{numbers[-1]}" if len(numbers) > 1 else "")
+    words = [label(w) if numbers_of_name(w) else _WORDS.get(w.lower(), w)
+             for w in name.split("_")]
+    words[0] = words[0][0].upper() + words[0][1:]
+    sections = [i[0].lower() + i[1:] for i in items if re.match(r"(Section|Abstract)\b", i)]
+    return " ".join(words) + (f" ({', '.join(sections)})" if sections else "")
+
+
+BEYOND = "Beyond the paper"
+
+
+def subcategory(shows: str, kind: str) -> str:
+    """The report subcategory of a paper's output: "Figures" or "Tables" for the paper's own
+    items, :data:`BEYOND` for those whose declaration says they go beyond it."""
+    return BEYOND if shows.startswith(BEYOND) else {"figure": "Figures", "table": "Tables"}[kind]
 
 
 def rows_for(table: list[dict], paper: str, name: str, kind: str = "figure",
@@ -94,16 +130,20 @@ def statement(row: dict, claim: str = "", lead: str = "") -> str:
             found += f" ({100 * float(row['rel_error']):.1f} % off)"
         said = f"{said}: {found}"
     lead = f"**{rst_text(lead)}**" if lead else f"**{row['verdict']}** ({rst_text(row['item'])})"
-    explanation = f" {rst_text(row['explanation'])}" if row["explanation"] else ""
+    # a claim's explanation quotes each variant, "printed: ... | consistent: ..."
+    explanation = f" {rst_text(row['explanation'].replace(' | ', '; '))}" if row["explanation"] else ""
     return f"- {lead} {rst_text(said)}.{explanation}"
 
 
 def caption(title: str, shows: str, rows: list[dict] | None = None,
-            claims: dict[tuple[str, str], str] | None = None) -> str:
-    """A figure's or table's caption: its title, what it shows, and every comparison row that
-    refers to it (``claims``: the paper's words for each quantity, from the paper-values file;
-    ``rows=None`` for a caption without statements)."""
-    lines = [f"**{rst_text(title)}.** {rst_text(shows)}", ""]
+            claims: dict[tuple[str, str], str] | None = None, key: list[str] = (),
+            parameters: str = "") -> str:
+    """A figure's or table's caption: its title, what it shows and what it draws beyond its
+    legend's words (``key``, read off the figure: rotorvib.io.plotting.drawn_key), every
+    comparison row that refers to it (``claims``: the paper's words for each quantity, from
+    the paper-values file; ``rows=None`` for a caption without statements), and the
+    parameters it depends on."""
+    lines = [f"**{rst_text(title)}.** " + " ".join(rst_text(t) for t in (shows, *key)), ""]
     if rows:
         lines += ["What the paper states, against the reproduction:", ""]
         lines += [statement(row, (claims or {}).get((row["paper"], row["quantity"]), ""))
@@ -111,6 +151,8 @@ def caption(title: str, shows: str, rows: list[dict] | None = None,
     elif rows is not None:
         lines += ["The paper states no value or claim here: the output is shown for what it "
                   "adds to the reproduction."]
+    if parameters:
+        lines += ["", f"*Parameters.* {rst_text(parameters)}"]
     return "\n".join(lines) + "\n"
 
 
@@ -149,15 +191,15 @@ def totals_table(table: list[dict]) -> list[str]:
     papers = sorted(counts)
     everything = sum(counts.values(), Counter())
     verdicts = [v for _, group in VERDICT_GROUPS for v in group]
-    rows = [[f"`Paper {p}`_"] + [str(counts[p][v]) for v in verdicts] for p in papers]
+    rows = [[f"Paper {p}"] + [str(counts[p][v]) for v in verdicts] for p in papers]
     rows.append(["all"] + [str(everything[v]) for v in verdicts])
     return _list_table(["paper"] + verdicts, rows)
 
 
 def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]:
     """The disagreements, grouped by paper and item: one bullet each, with its verdict counts
-    and its largest miss (the first row where no number is printed), stated as in a caption
-    with the first clause of the explanation."""
+    and its largest miss (the first row where no number is printed), stated as in a caption,
+    with the whole explanation (a clause cut short loses its numbers)."""
     groups: dict[tuple[str, str], list[dict]] = {}
     for row in table:
         if row["verdict"] in FINDINGS:
@@ -166,34 +208,51 @@ def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]
     for (paper, item), rows in sorted(groups.items(), key=lambda group: group[0][0]):
         verdicts = ", ".join(f"{n} {v}" for v, n in sorted(Counter(r["verdict"] for r in rows).items()))
         worst = max(rows, key=lambda r: float(r["rel_error"] or -1))
-        first = re.split(r"; |\. (?=[A-Z])", worst["explanation"], maxsplit=1)[0]
-        lines.append(statement({**worst, "explanation": first},
-                               claims.get((worst["paper"], worst["quantity"]), ""),
+        lines.append(statement(worst, claims.get((worst["paper"], worst["quantity"]), ""),
                                lead=f"Paper {paper}, {item} ({verdicts})"))
     return lines
 
 
-def landing_page(table: list[dict], claims: dict[tuple[str, str], str], papers: dict[str, dict],
+TITLE = "rotorvib: three rotor-dynamics papers reproduced from first principles"
+
+
+def landing_page(table: list[dict], papers: dict[str, dict]) -> str:
+    """The report's first page, short enough to read beside the rule graph: what was
+    reproduced, the verdict totals in one line per group, and links to the summary (the
+    verdict table, the findings, the discrepancy analysis) and to each paper
+    (``papers``: letter -> {"title", ...})."""
+    lines = [TITLE, "=" * len(TITLE), "",
+             "Every figure and table of three papers is regenerated from the equations with the "
+             "parameters of ``config/config.yaml`` and set beside the paper's own numbers: "
+             f"{len(table)} stated values and claims. Each figure's caption states the rows "
+             "about it.", "",
+             "**Verdict totals**", ""]
+    lines += [f"- {rst_text(group)}" for group in totals(table)]
+    lines += ["", "`Summary`_: the totals of each paper, the findings and the discrepancy "
+              "analysis. `Comparison`_: every row.", ""]
+    lines += [f"- `Paper {letter}`_: {rst_text(paper['title'])}"
+              for letter, paper in sorted(papers.items())]
+    return "\n".join(lines) + "\n"
+
+
+def summary_text(table: list[dict], claims: dict[tuple[str, str], str], papers: dict[str, dict],
                  discrepancy_totals: str) -> str:
-    """The report's first page: what was reproduced, verdict totals, the findings, the papers
-    (``papers``: letter -> {"citation", "summary"}) with links to their categories."""
-    title = "rotorvib: three rotor-dynamics papers reproduced from first principles"
-    lines = [title, "=" * len(title), "",
-             "Every figure and table of the three papers is regenerated from the equations with "
-             "the parameters of ``config/config.yaml`` and set beside the paper's own numbers. "
-             f"{len(table)} stated values and claims are compared in `Comparison`_; each "
-             "figure's caption repeats the rows that refer to it.", "",
-             "Verdict totals", "--------------", "",
-             rst_text(verdict_definitions()), ""]
+    """The report's summary page (reStructuredText): the verdict definitions and totals of
+    each paper, the discrepancy totals, the findings and the papers
+    (``papers``: letter -> {"citation", "summary"})."""
+    lines = ["Summary", "=======", "",
+             f"{len(table)} values and claims of three papers compared with their "
+             "reproduction.", "",
+             "Verdict totals", "--------------", "", rst_text(verdict_definitions()), ""]
     lines += totals_table(table)
     lines += [f"Discrepancy analysis: {rst_text(discrepancy_totals)}.", "",
               "Findings", "--------", "",
               "Where the paper and the reproduction disagree (verdicts "
-              + ", ".join(FINDINGS) + "):", ""]
+              + ", ".join(FINDINGS) + "), one entry per paper and item, stating its largest "
+              "miss:", ""]
     lines += findings(table, claims) + ["", "Papers", "------", ""]
-    for letter, paper in sorted(papers.items()):
-        lines += [f"- `Paper {letter}`_: {rst_text(paper['citation'])} "
-                  f"{rst_text(paper['summary'])}"]
+    lines += [f"- **Paper {letter}.** {rst_text(paper['citation'])} {rst_text(paper['summary'])}"
+              for letter, paper in sorted(papers.items())]
     return "\n".join(lines) + "\n"
 
 

@@ -17,7 +17,7 @@ from rotorvib.io.config import (
     validate_config,
 )
 from rotorvib.io.fingerprint import code_fingerprint
-from rotorvib.report import label, numbers_of_name, order_key
+from rotorvib.report import entry_label, label, names_in, subcategory
 
 try:
     # Snakemake's own loader keeps a duplicate key's last value: read each file strictly too.
@@ -53,8 +53,10 @@ def table(paper, name, ext):
     return f"results/paper_{paper}/tables/{name}.{ext}"
 
 
-def figure_file(paper, name):
-    return f"results/paper_{paper}/figures/{name}.png"
+def figure_file(paper, name, ext="png"):
+    """A figure's PNG, its vector copy (svg), or what it draws and depends on (json, for its
+    caption; rotorvib.io.plotting)."""
+    return f"results/paper_{paper}/figures/{name}.{ext}"
 
 
 def logs(name):
@@ -84,34 +86,86 @@ def figure(function, datasets, shows, items=(), **options):
     }
 
 
+def outputs_named(paper, name):
+    """The paper outputs whose cases figure ``name`` depends on: itself and those its
+    declaration names ("the three (beta, m) cases of Table 2"); its parameters statement
+    leaves out the cases of the others (rotorvib.io.plotting.parameters_text)."""
+    declared = FIGURES[paper][name]
+    return sorted({name} | names_in(" ".join([declared["shows"], *declared["items"]])))
+
+
 # Tables shown in the report, filled by the papers' .smk: TABLES[paper][name] says what the
-# table shows and the comparison items beyond those its name numbers ("Table 2" for table2).
+# table shows, the comparison items beyond those its name numbers ("Table 2" for table2) and
+# where its CSV is.
 TABLES = {}
 
 
-def report_table(paper, name, shows, items=()):
-    """Declare table ``name`` of ``paper`` ("all" for the whole project) and return the
-    ``report()`` flag's arguments: its generated caption, category and labels."""
-    TABLES.setdefault(paper, {})[name] = {"shows": shows, "items": list(items)}
-    return {
-        "caption": f"../../{caption_file(paper, name, 'table')}",
-        "category": "Comparison" if paper == "all" else f"Paper {paper.upper()}",
-        "subcategory": None if paper == "all" else "Tables",
-        "labels": report_labels(TABLES[paper], name, "table"),
+def report_table(paper, name, shows, items=(), path=None):
+    """Declare table ``name`` of ``paper`` ("all" for the whole project), written as CSV to
+    ``path`` (by default the paper's tables folder), and return that path. Rule report_text
+    writes it as an HTML page, rule report_results shows that page in the report."""
+    path = path or table(paper, name, "csv")
+    TABLES.setdefault(paper, {})[name] = {
+        "shows": shows,
+        "items": list(items),
+        "csv": path,
     }
-
-
-def report_labels(declared, name, kind):
-    """The report's labels of an output among the ``declared`` ones of its paper: its place
-    in the paper's order and its name ("Fig 8")."""
-    before = list(declared)[: list(declared).index(name)]
-    others = sum(1 for each in before if not numbers_of_name(each))
-    return {"#": order_key(name, others), kind: label(name, kind)}
+    return path
 
 
 def caption_file(paper, name, kind):
     """The generated caption file of a figure or table (rule report_text)."""
     return f"{REPORT_DIR}/captions/{kind}s/{paper}_{name}.rst"
+
+
+def table_page(paper, name):
+    """The HTML page of a declared table (rule report_text)."""
+    return f"{REPORT_DIR}/pages/{paper}_{name}.html"
+
+
+SUMMARY_PAGE = f"{REPORT_DIR}/pages/summary.html"
+
+
+def shown(paper, file_name):
+    """Where rule report_results puts a file the report shows, for ``paper`` ("all" for the
+    whole project); the report names a result by its file name."""
+    folder = "" if paper == "all" else f"paper_{paper}/"
+    return f"{REPORT_DIR}/shown/{folder}{file_name}"
+
+
+def report_entries():
+    """Every result the report shows, ``{shown path: (source file, report() arguments)}``: the
+    summary, each paper's figures and tables, and the comparison tables. Each has one label,
+    ``item``: Snakemake's report turns a second label into a toggle, which breaks a view
+    where it takes two values (one of two results, say). A view sorts its results by it.
+    """
+    entries = {
+        shown("all", "summary.html"): (
+            SUMMARY_PAGE,
+            {"category": "Summary", "labels": {"item": "Verdicts and findings"}},
+        )
+    }
+    for kind, declared in (("figure", FIGURES), ("table", TABLES)):
+        for paper, outputs in declared.items():
+            for name, d in outputs.items():
+                if kind == "figure":
+                    source = figure_file(paper, name)
+                else:
+                    source = table_page(paper, name)
+                entries[shown(paper, f"{name}{Path(source).suffix}")] = (
+                    source,
+                    {
+                        "caption": f"../../{caption_file(paper, name, kind)}",
+                        "category": (
+                            "Comparison" if paper == "all" else f"Paper {paper.upper()}"
+                        ),
+                        "subcategory": (
+                            None if paper == "all" else subcategory(d["shows"], kind)
+                        ),
+                        "labels": {"item": entry_label(name, kind, tuple(d["items"]))},
+                    },
+                )
+    return entries
 
 
 def figure_groups():
@@ -131,7 +185,8 @@ RESULTS = {}
 
 
 def all_results():
-    """Every final file: each paper's results, the comparison and the report's text."""
+    """Every final file: each paper's results, the comparison, the report's words and pages
+    and the files it shows."""
     files = [f for paper in sorted(RESULTS) for f in RESULTS[paper]]
     return (
         files
@@ -141,12 +196,23 @@ def all_results():
             for ext in ("csv", "md")
         ]
         + report_text_files()
+        + list(report_entries())
     )
 
 
 def report_text_files():
-    """The report's landing page and the captions of every figure and table."""
-    return [REPORT_LANDING] + captions(FIGURES, "figure") + captions(TABLES, "table")
+    """The report's landing page, its summary page, the captions of every figure and table
+    and the HTML page of every table."""
+    return (
+        [REPORT_LANDING, SUMMARY_PAGE]
+        + captions(FIGURES, "figure")
+        + captions(TABLES, "table")
+        + table_pages()
+    )
+
+
+def table_pages():
+    return [table_page(paper, name) for paper in TABLES for name in TABLES[paper]]
 
 
 def captions(declared, kind):

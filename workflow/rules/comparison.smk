@@ -15,28 +15,24 @@ rule comparison:
             rules.c_discrepancies.output[0],
         ],
     output:
-        csv=report(
-            "results/comparison.csv",
-            **report_table(
-                "all",
-                "comparison",
-                "Every value and claim the papers state (data/paper_values.csv) beside the "
-                "reproduced value, with the relative error, the verdict and the explanation "
-                "of each difference.",
-            ),
+        csv=report_table(
+            "all",
+            "comparison",
+            "Every value and claim the papers state (data/paper_values.csv) beside the "
+            "reproduced value, with the relative error, the verdict and the explanation "
+            "of each difference.",
+            path="results/comparison.csv",
         ),
         md="results/comparison.md",
-        discrepancies_csv=report(
-            "results/discrepancies.csv",
-            **report_table(
-                "all",
-                "discrepancies",
-                "Each printed number the reproduction misses, tested against alternative "
-                "readings of the paper (definitions, variants, parameter slips, units, "
-                "rounding): the value each hypothesis gives and whether it reproduces the "
-                "printed one (within the MATCH tolerance); an inversion gives the single "
-                "parameter value that would.",
-            ),
+        discrepancies_csv=report_table(
+            "all",
+            "discrepancies",
+            "Each printed number the reproduction misses, tested against alternative "
+            "readings of the paper (definitions, variants, parameter slips, units, "
+            "rounding): the value each hypothesis gives and whether it reproduces the "
+            "printed one (within the MATCH tolerance); an inversion gives the single "
+            "parameter value that would.",
+            path="results/discrepancies.csv",
         ),
         discrepancies_md="results/discrepancies.md",
     log:

@@ -15,14 +15,9 @@ for (_paper, _datasets), _names in figure_groups().items():
             paper_values=PAPER_VALUES,
         output:
             **{
-                name: report(
-                    figure_file(_paper, name),
-                    caption=f"../../{caption_file(_paper, name, 'figure')}",
-                    category=f"Paper {_paper.upper()}",
-                    subcategory="Figures",
-                    labels=report_labels(FIGURES[_paper], name, "figure"),
-                )
+                f"{name}{suffix}": figure_file(_paper, name, ext)
                 for name in _names
+                for suffix, ext in (("", "png"), ("_svg", "svg"), ("_drawn", "json"))
             },
         log:
             logs(_rule),
@@ -36,6 +31,7 @@ for (_paper, _datasets), _names in figure_groups().items():
                     key: FIGURES[_paper][name][key]
                     for key in ("function", "datasets", "options")
                 }
+                | {"keep": outputs_named(_paper, name)}
                 for name in _names
             },
         message:

@@ -32,7 +32,10 @@ FIGURES["a"] = {
     "fig5": figure(
         "fig5",
         {"resp": "responses"},
-        f"Rotor response for three ball-damping ratios beta, one column each.{A_MODEL}",
+        "The paper's claim that ball damping speeds the balancing up to an optimum and slows "
+        "it beyond: the rotor amplitude for three ball-damping ratios beta on a log scale, "
+        "beside the decay rate of the slowest mode of the linearised balanced state for each "
+        f"beta.{A_MODEL}",
         betas=A["fig5_6"]["betas"],
     ),
     "fig6": figure(

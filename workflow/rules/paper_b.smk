@@ -60,12 +60,6 @@ for _key, _sample in (
 if _problems := existence_problems(B):
     raise WorkflowError("invalid configuration:\n  " + "\n  ".join(_problems))
 
-# Every paper B figure draws the paper's printed kinematics (the reproduction) solid and the
-# consistent kinematics dashed, and the paper's stated values in red.
-B_STYLE = (
-    " Solid: the paper's printed kinematics (the reproduction); dashed: consistent kinematics; "
-    "red: the paper's values."
-)
 FIGURES["b"] = {
     "fig2": figure(
         "stability_map",
@@ -87,20 +81,20 @@ FIGURES["b"] = {
     "fig6": figure(
         "unbalanced_response",
         {"tr": "time_responses"},
-        f"Rotor amplitude r(t) without ball damping (beta = 0).{B_STYLE}",
+        "Rotor amplitude r(t) without ball damping (beta = 0).",
     ),
     "fig7": figure(
         "envelope_response",
         {"tr": "time_responses"},
         "Rotor amplitude r(t) of the paper's Fig 7 case with the envelope through its peaks, "
-        f"the balance threshold and the balance time.{B_STYLE}",
+        "the balance threshold and the balance time.",
     ),
     **{
         f"fig{number}": figure(
             "balance_against",
             {"study": "balance_beta"},
             f"Balance time against the ball-damping ratio beta for the three initial ball "
-            f"positions, at the {rank} unbalance eps_bar of the study.{B_STYLE}",
+            f"positions, at the {rank} unbalance eps_bar of the study.",
             select={"eps_bar": index},
         )
         for index, (number, rank) in enumerate(
@@ -110,7 +104,7 @@ FIGURES["b"] = {
     "fig11": figure(
         "responses",
         {"tr": "time_responses"},
-        f"Rotor amplitude r(t) for three ball-damping ratios beta.{B_STYLE}",
+        "Rotor amplitude r(t) for three ball-damping ratios beta.",
         prefix="fig11",
     ),
     **{
@@ -118,7 +112,7 @@ FIGURES["b"] = {
             "balance_against",
             {"study": "balance_mass"},
             f"Balance time against the ball mass m for the three initial ball positions, at "
-            f"the {rank} unbalance eps_bar of the study, with the optimum mass marked.{B_STYLE}",
+            f"the {rank} unbalance eps_bar of the study, with the optimum mass marked.",
             select={"eps_bar": index},
             marks={"m_opt": "optimum m"},
         )
@@ -129,19 +123,19 @@ FIGURES["b"] = {
     "fig15": figure(
         "responses",
         {"tr": "time_responses"},
-        f"Rotor amplitude r(t) for three ball masses.{B_STYLE}",
+        "Rotor amplitude r(t) for three ball masses.",
         prefix="fig15",
     ),
     "fig16": figure(
         "bearing_forces",
         {"tr": "time_responses"},
-        f"Bearing force against time for the three (beta, m) cases of Table 2.{B_STYLE}",
+        "Bearing force against time for the three (beta, m) cases of Table 2.",
     ),
     "balance_eps_bar": figure(
         "balance_against",
         {"study": "balance_eps_bar"},
         "Beyond the paper: balance time against the unbalance eps_bar for the three initial "
-        f"ball positions.{B_STYLE}",
+        "ball positions.",
     ),
     "ga_convergence": figure(
         "ga_convergence",
@@ -153,7 +147,8 @@ FIGURES["b"] = {
     "calibration_R": figure(
         "calibration",
         {"forces": "forces"},
-        "The race radius R, which the paper does not state: the Table 2 peak forces computed "
+        "Beyond the paper: the race radius R, which the paper does not state: the Table 2 "
+        "peak forces computed "
         "over a range of R, and the R that fits them.",
         items=["Table 2"],
         R=B["machine"]["R"],
@@ -182,7 +177,7 @@ FIGURES["b"] = {
             "balance times and whether it balances, over the uncertain inputs (ranges in the "
             "config), their convergence with the sample, and each quantity's distribution "
             "with the printed value.",
-            items=["Uncertainty"],
+            items=[f"Uncertainty of {label(case)}"],
         )
         for case, spec in B_UNCERTAIN.items()
     },
@@ -227,17 +222,15 @@ RESULTS["b"] = results_of(
 
 rule b_derivation_checks:
     output:
-        csv=report(
-            table("b", "derivation_checks", "csv"),
-            **report_table(
-                "b",
-                "derivation_checks",
-                "Equations (2)-(34) re-derived with sympy from the kinetic energy (4), the "
-                "potential (5) and the Rayleigh function (6), each compared with the printed "
-                "one under three conventions for the disk angle: exactly w(t) t, the paper's "
-                "(the w'' t term dropped) and the consistent one (rate w). A FAIL row gives the "
-                "difference from the printed equation.",
-            ),
+        csv=report_table(
+            "b",
+            "derivation_checks",
+            "Equations (2)-(34) re-derived with sympy from the kinetic energy (4), the "
+            "potential (5) and the Rayleigh function (6), each compared with the printed "
+            "one under three conventions for the disk angle: exactly w(t) t, the paper's "
+            "(the w'' t term dropped) and the consistent one (rate w). A FAIL row gives the "
+            "difference from the printed equation.",
+            path=table("b", "derivation_checks", "csv"),
         ),
         md=table("b", "derivation_checks", "md"),
     log:
@@ -453,27 +446,23 @@ rule b_tables:
         mass=dataset("b", "balance_mass"),
         ga=rules.b_ga.output[0],
     output:
-        table1=report(
-            table("b", "table1", "csv"),
-            **report_table(
-                "b",
-                "table1",
-                "Optimum ball mass (least mean balance time over the three initial conditions "
-                "of eq. 39) and that mean balance time against the operating speed, beside "
-                "the paper's values.",
-                items=["eq. 41"],
-            ),
+        table1=report_table(
+            "b",
+            "table1",
+            "Optimum ball mass (least mean balance time over the three initial conditions "
+            "of eq. 39) and that mean balance time against the operating speed, beside "
+            "the paper's values.",
+            items=["eq. 41"],
+            path=table("b", "table1", "csv"),
         ),
         table1_md=table("b", "table1", "md"),
-        table2=report(
-            table("b", "table2", "csv"),
-            **report_table(
-                "b",
-                "table2",
-                "Maximum bearing force and its decay time for the paper's three (beta, m) "
-                "cases, with the race radius R inferred from the paper's forces (Fig "
-                "calibration R), beside the paper's values.",
-            ),
+        table2=report_table(
+            "b",
+            "table2",
+            "Maximum bearing force and its decay time for the paper's three (beta, m) "
+            "cases, with the race radius R inferred from the paper's forces (Fig "
+            "calibration R), beside the paper's values.",
+            path=table("b", "table2", "csv"),
         ),
         table2_md=table("b", "table2", "md"),
         kinematics=table("b", "kinematics", "md"),

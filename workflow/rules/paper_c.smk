@@ -105,17 +105,15 @@ RESULTS["c"] = results_of(
 
 rule c_derivation_checks:
     output:
-        csv=report(
-            table("c", "derivation_checks", "csv"),
-            **report_table(
-                "c",
-                "derivation_checks",
-                "Equations (1)-(20) re-derived with sympy (Lagrange's equations from the kinetic "
-                "and potential energies and the generalised forces) and compared with the "
-                "printed ones. A FAIL row gives the difference from the printed equation; "
-                "every result downstream uses the derived equations.",
-                items=["eq. 20"],
-            ),
+        csv=report_table(
+            "c",
+            "derivation_checks",
+            "Equations (1)-(20) re-derived with sympy (Lagrange's equations from the kinetic "
+            "and potential energies and the generalised forces) and compared with the "
+            "printed ones. A FAIL row gives the difference from the printed equation; "
+            "every result downstream uses the derived equations.",
+            items=["eq. 20"],
+            path=table("c", "derivation_checks", "csv"),
         ),
         md=table("c", "derivation_checks", "md"),
     log:
@@ -276,16 +274,14 @@ rule c_broadband_table:
     input:
         bb=rules.c_broadband.output[0],
     output:
-        csv=report(
-            table("c", "broadband", "csv"),
-            **report_table(
-                "c",
-                "broadband",
-                "Beyond the paper: each absorber design with its parameters (m, k, c, d of "
-                "each set), added mass, largest D over the band and over all frequencies, and "
-                "its largest |theta| over the last forcing period at resonance.",
-                items=["Broadband absorber"],
-            ),
+        csv=report_table(
+            "c",
+            "broadband",
+            "Beyond the paper: each absorber design with its parameters (m, k, c, d of "
+            "each set), added mass, largest D over the band and over all frequencies, and "
+            "its largest |theta| over the last forcing period at resonance.",
+            items=["Broadband absorber"],
+            path=table("c", "broadband", "csv"),
         ),
         md=table("c", "broadband", "md"),
     log:
@@ -302,16 +298,14 @@ rule c_table2:
     input:
         ga=rules.c_ga.output[0],
     output:
-        csv=report(
-            table("c", "table2", "csv"),
-            **report_table(
-                "c",
-                "table2",
-                "The paper's optimum dual absorber (Table 2) beside the optimum our genetic "
-                "algorithm finds with the paper's bounds, population and generations, both "
-                "evaluated with eq. (20).",
-                items=["Section 4"],
-            ),
+        csv=report_table(
+            "c",
+            "table2",
+            "The paper's optimum dual absorber (Table 2) beside the optimum our genetic "
+            "algorithm finds with the paper's bounds, population and generations, both "
+            "evaluated with eq. (20).",
+            items=["Section 4"],
+            path=table("c", "table2", "csv"),
         ),
         md=table("c", "table2", "md"),
     log:

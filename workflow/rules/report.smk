@@ -1,6 +1,7 @@
-# The report's words: its landing page and the caption of every figure and table, written from
-# the comparison table by rotorvib.report so that they cannot disagree with it. Snakemake reads
-# them when it renders `snakemake --report` (Snakefile `report:`, each `report()` caption).
+# The report: its words (the landing page and the caption of every figure and table) and its
+# HTML pages (the summary, every table), written from the comparison by rotorvib.report so that
+# they cannot disagree with it; then the files it shows. Snakemake reads them when it renders
+# `snakemake --report` (Snakefile `report:`, the `report()` flags of rule report_results).
 
 
 rule report_text:
@@ -9,16 +10,18 @@ rule report_text:
         discrepancies="results/discrepancies.csv",
         paper_values=PAPER_VALUES,
         papers="data/papers.yaml",
-        tables=[
-            table(paper, name, "csv")
-            for paper in TABLES
-            if paper != "all"
-            for name in TABLES[paper]
+        tables=[d["csv"] for paper in TABLES for d in TABLES[paper].values()],
+        drawn=[
+            figure_file(paper, name, "json")
+            for paper in FIGURES
+            for name in FIGURES[paper]
         ],
     output:
         landing=REPORT_LANDING,
+        summary=SUMMARY_PAGE,
         figure_captions=captions(FIGURES, "figure"),
         table_captions=captions(TABLES, "table"),
+        table_pages=table_pages(),
     log:
         logs("report_text"),
     # Reads tables only: runs where Snakemake runs, never as a cluster job.
@@ -33,6 +36,30 @@ rule report_text:
         },
         tables=TABLES,
     message:
-        "The report's landing page and captions, from the comparison"
+        "The report's landing page, summary, captions and table pages, from the comparison"
     script:
         "../scripts/report_text.py"
+
+
+# The files the report shows, copied, so that their result pages show no job parameters: a
+# script job's parameters carry code fingerprints and configuration hashes (common.smk), which
+# Snakemake's report would print under each caption. This job has none, and runs no library
+# code (a `run:` block, whose own code Snakemake watches).
+import shutil
+
+_SHOWN = report_entries()
+
+
+rule report_results:
+    input:
+        [source for source, _ in _SHOWN.values()],
+    output:
+        [report(path, **arguments) for path, (_, arguments) in _SHOWN.items()],
+    log:
+        logs("report_results"),
+    localrule: True
+    message:
+        "The files the report shows"
+    run:
+        for source, path in zip(input, output):
+            shutil.copyfile(source, path)

@@ -1,15 +1,17 @@
 """Figure rules (figures.smk): the figures of a paper that read the same datasets, each drawn by
 ``rotorvib.papers.<paper>.figures.<function>`` (params.module) from its datasets (by argument
-name) and the paper's values. Under every figure: the parameters its datasets were made with."""
+name) and the paper's values, and saved as PNG and SVG; beside each, what it draws and the
+parameters it depends on (JSON), which its caption states (rule report_text)."""
 
 from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import importlib
 import json
+from pathlib import Path
 
 from rotorvib.comparison import paper_values_of
 from rotorvib.io.datasets import read_dataset
-from rotorvib.io.plotting import parameters_text, save, state_parameters
+from rotorvib.io.plotting import drawn_key, parameters_text, save
 
 module = importlib.import_module(snakemake.params.module)  # the figures' own imports too
 job.start(snakemake.log[0])
@@ -21,6 +23,8 @@ paper = paper_values_of(snakemake.input.paper_values, p.paper.upper())
 for name, declared in p.figures.items():
     datasets = {arg: read[dataset] for arg, dataset in declared["datasets"].items()}
     fig = getattr(module, declared["function"])(**datasets, paper=paper, **declared["options"])
-    state_parameters(fig, parameters_text({arg: json.loads(ds.attrs["provenance_config"])
-                                           for arg, ds in datasets.items()}))
+    drawn = {"key": drawn_key(fig), "parameters": parameters_text(
+        {arg: json.loads(ds.attrs["provenance_config"]) for arg, ds in datasets.items()},
+        keep=set(declared["keep"]))}
     save(fig, snakemake.output[name])
+    Path(snakemake.output[f"{name}_drawn"]).write_text(json.dumps(drawn, indent=1) + "\n")

@@ -1,11 +1,13 @@
-"""Rule report_text: the report's landing page and every caption, from the comparison table."""
+"""Rule report_text: the report's landing page, summary page, every caption and every table's
+HTML page, from the comparison table."""
 
 from rotorvib.io import job  # first: the imports below run without the cyclic GC
 
 import csv
+import json
 from pathlib import Path
 
-from rotorvib import discrepancy, report
+from rotorvib import discrepancy, report, report_pages
 from rotorvib.io.config import load_yaml
 
 job.start(snakemake.log[0])
@@ -19,29 +21,37 @@ def rows(path):
 table = rows(snakemake.input.comparison)
 discrepancies = rows(snakemake.input.discrepancies)
 claims = {(row["paper"], row["quantity"]): row["claim"] for row in rows(snakemake.input.paper_values)}
-tables = {Path(path).parent.parent.name.removeprefix("paper_") + "/" + Path(path).stem: rows(path)
-          for path in snakemake.input.tables}
+papers = load_yaml(snakemake.input.papers)
 out = snakemake.output
 figure_captions = {Path(path).stem: path for path in out.figure_captions}
 table_captions = {Path(path).stem: path for path in out.table_captions}
+table_pages = {Path(path).stem: path for path in out.table_pages}
+discrepancy_totals = discrepancy.totals_of_rows(discrepancies)
 
-report.write(out.landing, report.landing_page(
-    table, claims, load_yaml(snakemake.input.papers),
-    discrepancy.totals_of_rows(discrepancies)))
+report.write(out.landing, report.landing_page(table, papers))
+report.write(out.summary, report_pages.rst_to_html(
+    report.summary_text(table, claims, papers, discrepancy_totals)))
+drawn = {f"{Path(path).parent.parent.name.removeprefix('paper_')}_{Path(path).stem}":
+         json.loads(Path(path).read_text()) for path in snakemake.input.drawn}
 for paper, figures in snakemake.params.figures.items():
     for name, entry in figures.items():
         report.write_caption(figure_captions[f"{paper}_{name}"], report.caption(
             f"Paper {paper.upper()}, {report.label(name)}", entry["shows"],
-            report.rows_for(table, paper, name, "figure", tuple(entry["items"])), claims))
+            report.rows_for(table, paper, name, "figure", tuple(entry["items"])), claims,
+            **drawn[f"{paper}_{name}"]))
 for paper, entries in snakemake.params.tables.items():
     for name, entry in entries.items():
+        csv_text = Path(entry["csv"]).read_text(encoding="utf-8")
         if paper == "all":  # the comparison and the discrepancy analysis: their totals
-            text = report.caption(report.label(name, "table"), f"{entry['shows']} "
+            title = report.label(name, "table").capitalize()
+            text = report.caption(title, f"{entry['shows']} "
                                   f"{report.comparison_summary(table)} Discrepancy analysis: "
-                                  f"{discrepancy.totals_of_rows(discrepancies)}.")
+                                  f"{discrepancy_totals}.")
         else:
-            text = report.caption(
-                f"Paper {paper.upper()}, {report.label(name, 'table')}",
-                entry["shows"] + report.check_counts(tables.get(f"{paper}/{name}", [])),
-                report.rows_for(table, paper, name, "table", tuple(entry["items"])), claims)
+            title = f"Paper {paper.upper()}, {report.label(name, 'table')}"
+            text = report.caption(title, entry["shows"] + report.check_counts(rows(entry["csv"])),
+                                  report.rows_for(table, paper, name, "table",
+                                                  tuple(entry["items"])), claims)
         report.write_caption(table_captions[f"{paper}_{name}"], text)
+        report.write(table_pages[f"{paper}_{name}"], report_pages.table_page(
+            title, report_pages.rst_fragment(text), csv_text, Path(entry["csv"]).name))

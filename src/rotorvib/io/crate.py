@@ -25,7 +25,8 @@ CRATE = "ro-crate-metadata.json"
 FORMATS = {".nc": "application/x-netcdf", ".csv": "text/csv", ".md": "text/markdown",
            ".png": "image/png", ".html": "text/html", ".yaml": "application/yaml",
            ".cff": "application/yaml", ".txt": "text/plain", ".json": "application/json",
-           ".rst": "text/x-rst", "": "text/plain"}  # "": LICENCE, Snakefile
+           ".rst": "text/x-rst", ".svg": "image/svg+xml",
+           "": "text/plain"}  # "": LICENCE, Snakefile
 DATA_LICENCE = "https://spdx.org/licenses/CC-BY-4.0"
 CODE_LICENCE = "https://spdx.org/licenses/MIT"
 LICENCES = {DATA_LICENCE: ("CC-BY-4.0", "Creative Commons Attribution 4.0: the data"),
@@ -41,6 +42,10 @@ SNAKEMAKE_PAGES = {"https://doi.org/10.1093/bioinformatics/bts480": "Snakemake's
 DESCRIPTIONS = (
     (r"results/paper_(?P<paper>\w)/datasets/(?P<name>\w+)\.nc", "Dataset: {title}"),
     (r"results/paper_(?P<paper>\w)/figures/(?P<name>\w+)\.png", "Paper {paper}, {figure}"),
+    (r"results/paper_(?P<paper>\w)/figures/(?P<name>\w+)\.svg",
+     "Paper {paper}, {figure}: vector copy"),
+    (r"results/paper_(?P<paper>\w)/figures/(?P<name>\w+)\.json",
+     "Paper {paper}, {figure}: what it draws and the parameters it depends on (its caption)"),
     (r"results/paper_(?P<paper>\w)/tables/(?P<name>\w+)\.(?P<ext>\w+)",
      "Paper {paper}, {table} ({ext})"),
     (r"results/paper_(?P<paper>\w)/reproduced\.csv",
@@ -51,6 +56,9 @@ DESCRIPTIONS = (
      "against alternative readings of the paper"),
     (r"results/report\.html", "The HTML report of the run (snakemake --report)"),
     (r"results/report/.+\.rst", "Words of the HTML report, written from the comparison"),
+    (r"results/report/pages/.+\.html", "A page of the HTML report (its summary or a table), "
+     "written from the comparison"),
+    (r"results/report/shown/.+", "A file the HTML report shows (a copy)"),
     (r"results/run/config\.yaml", "The run's whole configuration (files and overrides merged)"),
     (r"results/run/commit\.txt", "The commit of the code that made the results"),
     (r"config/.+\.yaml", "A configuration file the run read"),

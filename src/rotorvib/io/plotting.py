@@ -1,8 +1,9 @@
-"""Shared figure style and output: readable defaults, the paper's values drawn, deterministic PNGs."""
+"""Shared figure style and output: readable defaults, the paper's values drawn, what a figure
+draws and the parameters it depends on (for its caption), and deterministic PNG and SVG files."""
 
 from __future__ import annotations
 
-import textwrap
+import re
 from pathlib import Path
 
 import matplotlib
@@ -10,14 +11,14 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.font_manager import FontProperties  # noqa: E402
 from matplotlib.image import imsave  # noqa: E402
 from matplotlib.legend import Legend  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
 
 STYLE = {
     "figure.figsize": (7.0, 4.3),
-    "figure.dpi": 110,
+    "figure.dpi": 150,
+    "svg.hashsalt": "rotorvib",     # the SVG's element ids, and so its bytes, are stable
     "axes.grid": True,
     "grid.alpha": 0.3,
     "axes.titlesize": 11,
@@ -60,14 +61,29 @@ def _value(value) -> str:
     return str(value)
 
 
-def parameters_text(configs: dict[str, dict], skip=("code",)) -> str:
-    """The parameters the datasets were made with (each one's recorded job configuration,
-    ``provenance_config``), one ``key: values`` group per top-level key; a key whose value
-    differs between datasets is given once per dataset, ``key (dataset)``."""
+_OUTPUT_NAME = re.compile(r"(?:fig|table)\d+(?:_\d+)*")
+
+
+def _only(value, keep: set[str]):
+    """``value`` without the entries of mappings keyed by a paper output's name ("fig6",
+    "table2") that is not in ``keep``: a dataset made for several figures records each one's
+    case, and a figure depends on its own."""
+    if not isinstance(value, dict):
+        return value
+    return {k: _only(v, keep) for k, v in value.items()
+            if not _OUTPUT_NAME.fullmatch(str(k)) or k in keep}
+
+
+def parameters_text(configs: dict[str, dict], keep: set[str] = frozenset(),
+                    skip=("code",)) -> str:
+    """The parameters a figure depends on: the configuration each of its datasets was made
+    with (``provenance_config``), one ``key: values`` group per top-level key, without the
+    cases of other outputs (those not in ``keep``, :func:`_only`); a key whose value differs
+    between datasets is given once per dataset, ``key (dataset)``."""
     groups = {}
     for name, config in configs.items():
-        for key, value in config.items():
-            if key not in skip:
+        for key, value in _only(config, set(keep)).items():
+            if key not in skip and value != {}:
                 groups.setdefault(key, {})[name] = value
     parts = []
     for key, values in groups.items():
@@ -79,31 +95,36 @@ def parameters_text(configs: dict[str, dict], skip=("code",)) -> str:
     return "; ".join(parts)
 
 
-def state_parameters(fig, text: str, fontsize: float = 6.0, pad: float = 0.05) -> None:
-    """Write ``text`` under the figure's contents in small grey type: the figure grows by a band
-    ``pad`` inches above and below the text, and its layout (constrained, as :func:`figure`
-    makes it) keeps to the area above. The text is wrapped at word boundaries to the figure's
-    width: at the mean width of its characters as drawn, then narrower until every line fits."""
-    renderer = fig.canvas.get_renderer()
-    props = FontProperties(size=fontsize)
-    text = "Parameters: " + text
+def _legend_entries(fig) -> list[tuple[str, str]]:
+    """(label, line style) of every entry of the figure's legends, in order."""
+    legends = [ax.get_legend() for ax in fig.axes] + list(fig.legends)
+    entries = []
+    for legend in filter(None, legends):
+        for handle, text in zip(legend.legend_handles, legend.get_texts()):
+            style = handle.get_linestyle() if hasattr(handle, "get_linestyle") else ""
+            entries.append((text.get_text(), style if isinstance(style, str) else ""))
+    return entries
 
-    def width(line):
-        return renderer.get_text_width_height_descent(line, props, ismath=False)[0]
 
-    room = (fig.get_figwidth() - 2 * pad) * fig.dpi
-    chars = int(len(text) * room / width(text)) + 1
-    lines = [text]
-    while max(map(width, lines)) > room:
-        chars -= 1 + chars // 20
-        lines = textwrap.wrap(text, chars)
-    label = fig.text(pad / fig.get_figwidth(), 0.0, "\n".join(lines), fontproperties=props,
-                     color="0.35", ha="left", va="top")
-    band = label.get_window_extent(renderer).height / fig.dpi + 2 * pad
-    height = fig.get_figheight() + band
-    fig.set_figheight(height)
-    label.set_y((band - pad) / height)
-    fig.get_layout_engine().set(rect=(0.0, band / height, 1.0, 1.0 - band / height))
+def drawn_key(fig) -> list[str]:
+    """Sentences that say what the figure draws beyond its legend's words, read off the drawn
+    artists: the paper's values (artists labelled "paper: ...", as :func:`paper_hline`,
+    :func:`paper_vline` and :func:`paper_point` draw them), and the line style of each kinematics where every legend entry of the printed one
+    is solid and every entry of the consistent one dashed."""
+    said = []
+    paper = [artist.get_label().removeprefix("paper: ") for ax in fig.axes
+             for artist in ax.get_children()
+             if str(artist.get_label()).startswith("paper: ")]
+    if paper:
+        said.append("The paper's values drawn (legend \"paper\"): "
+                    + "; ".join(dict.fromkeys(paper)) + ".")
+    styles = {kinematics: {style for label, style in _legend_entries(fig)
+                           if label.endswith(f", {kinematics}")}
+              for kinematics in ("printed", "consistent")}
+    if styles == {"printed": {"-"}, "consistent": {"--"}}:
+        said.append("Solid lines: the paper's printed kinematics (the reproduction); dashed: "
+                    "the consistent kinematics.")
+    return said
 
 
 def _texts_on_canvas(fig) -> bool:
@@ -124,62 +145,88 @@ def _texts_on_canvas(fig) -> bool:
 
 
 def save(fig, path: str | Path) -> Path:
-    """Save as PNG without timestamps (byte-stable for equal content) and close. The figure is
-    laid out and drawn once and its canvas written (``savefig`` would lay it out in a pass of
-    its own first); a figure with a text beyond its canvas (a title wider than the figure) is
-    saved by ``savefig`` cropped to all it draws (``bbox_inches="tight"``) instead."""
+    """Save as PNG and, beside it, as SVG (a vector copy for papers), both without timestamps
+    (byte-stable for equal content), and close. The PNG is the canvas as drawn once
+    (``savefig`` would lay the figure out in a pass of its own first); a figure with a text
+    beyond its canvas (a title wider than the figure) is saved cropped to all it draws
+    (``bbox_inches="tight"``) instead, in both formats."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with plt.rc_context(STYLE):
         fig.canvas.draw()
-        if _texts_on_canvas(fig):
+        crop = {} if _texts_on_canvas(fig) else {"bbox_inches": "tight"}
+        if crop:
+            fig.savefig(path, metadata={"Software": None}, **crop)
+        else:
             imsave(path, np.asarray(fig.canvas.buffer_rgba()), format="png", dpi=fig.dpi,
                    metadata={"Software": None})
-        else:
-            fig.savefig(path, bbox_inches="tight", metadata={"Software": None})
+        fig.savefig(path.with_suffix(".svg"), format="svg", metadata={"Date": None}, **crop)
     plt.close(fig)
     return path
 
 
+# A Sobol index is drawn only where its 95 % interval is narrower than this: a wider one says
+# nothing about the input at this sample size (the index lies in [0, 1] by definition).
+INFORMATIVE_INTERVAL = 0.5
+
+
 def sensitivity(ds, printed: dict[str, float], title: str):
-    """One row per quantity of a sensitivity study (rotorvib.methods.sensitivity): first-order
-    and total Sobol indices with their 95 % intervals at the largest sample, the total indices
-    against the sample size (convergence), and the quantity's distribution over the input
-    ranges with its 5-95 % band, its nominal value and the paper's (``printed``, by quantity)."""
+    """One row per quantity of a sensitivity study (rotorvib.methods.sensitivity), two panels:
+
+    - left, the total Sobol index of each input with its 95 % interval at the largest sample,
+      where that interval is narrower than :data:`INFORMATIVE_INTERVAL`; an input whose
+      interval is wider is named as undecided (estimates shown clipped to [0, 1]);
+    - right, the quantity's distribution over the input points, its 5-95 % band (that of the
+      comparison rows), its nominal value and the paper's (``printed``, by quantity). Where the
+      study records whether a run balances (quantity ``balanced``), a time (unit s) is drawn
+      for the balanced runs only, the others counted apart (their time is t_end, a cap, not a
+      value), and the ``balanced`` row is the share of runs that balance."""
     names = [str(n) for n in ds.input_name.values]
     quantities = [str(q) for q in ds.quantity_name.values]
-    fig, axes = figure(len(quantities), 3, figsize=(15.0, 2.9 * len(quantities)), squeeze=False)
-    position = range(len(names))
+    balanced = (ds.y.values[quantities.index("balanced")] == 1) if "balanced" in quantities \
+        else np.ones(ds.sizes["sample"], bool)
+    fig, axes = figure(len(quantities), 2, figsize=(11.0, 2.6 * len(quantities) + 0.6),
+                       squeeze=False, width_ratios=(1, 1.3))
+    position = np.arange(len(names))
     for q, quantity in enumerate(quantities):
         units = str(ds.quantity_units.values[q])
         ax = axes[q, 0]
-        for shift, key, color in ((-0.2, "S1", "C0"), (0.2, "ST", "C1")):
-            ax.bar([i + shift for i in position], ds[key].values[q, -1], width=0.4, color=color,
-                   yerr=ds[f"{key}_conf"].values[q, -1], capsize=2,
-                   label={"S1": "first-order", "ST": "total"}[key])
-        ax.set_xticks(list(position), names, rotation=30, fontsize=8)
-        constant = bool(np.all(np.isnan(ds.ST.values[q, -1])))
-        ax.set(ylabel=f"Sobol index of {quantity}", ylim=(-0.1, 1.1),
-               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)"
-               + (": constant, indices undefined" if constant else ""))
-        ax.legend(fontsize=7)
+        st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
+        constant = bool(np.all(np.isnan(st)))
+        decided = ~np.isnan(conf) & (2 * conf < INFORMATIVE_INTERVAL)
+        ax.barh(position[decided], np.clip(st[decided], 0, 1), xerr=conf[decided], color="C1",
+                capsize=2, label="total index, 95 % interval")
+        for i in np.flatnonzero(~decided):
+            ax.text(0.01, i, "undecided" if not constant else "constant output", va="center",
+                    fontsize=7, color="0.45")
+        ax.set_yticks(position, names, fontsize=8)
+        ax.invert_yaxis()
+        ax.set(xlim=(0, 1.05), xlabel=f"total Sobol index of {quantity}",
+               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)")
+        if decided.any():
+            ax.legend(fontsize=7, loc="lower right")
         ax = axes[q, 1]
-        for i, name in enumerate(names):
-            ax.errorbar(ds.n_base.values, ds.ST.values[q, :, i], ds.ST_conf.values[q, :, i],
-                        marker="o", ms=3, capsize=2, lw=1, label=name)
-        ax.set_xscale("log", base=2)
-        ax.set(xlabel="base points of the sample", ylabel="total Sobol index",
-               title="convergence")
-        ax.legend(fontsize=6, ncol=2)
-        ax = axes[q, 2]
-        ax.hist(ds.y.values[q], bins=40, color="0.7")
+        y = ds.y.values[q]
         lo, hi = ds.band.values[q, 0], ds.band.values[q, -1]
-        ax.axvspan(lo, hi, color="C0", alpha=0.15, label=f"{ds.percentile.values[0]:g}-"
-                   f"{ds.percentile.values[-1]:g} % band")
+        if quantity == "balanced":
+            share = balanced.mean()
+            ax.barh([0, 1], [share, 1 - share], color=["C0", "0.6"])
+            ax.set_yticks([0, 1], ["balances by t_end", "does not"], fontsize=8)
+            ax.set(xlim=(0, 1), xlabel="share of input points",
+                   title=f"{balanced.sum()} of {balanced.size} input points balance")
+            continue
+        timed = units == "s" and not balanced.all()
+        shown = y[balanced] if timed else y
+        ax.hist(shown, bins=30, color="0.6",
+                label=f"balanced runs ({shown.size})" if timed else "input points")
+        ax.axvspan(lo, hi, color="C0", alpha=0.12, label=f"{ds.percentile.values[0]:g}-"
+                   f"{ds.percentile.values[-1]:g} % band of all points")
         ax.axvline(float(ds.nominal[q]), color="k", lw=1.2, label="reproduction (nominal)")
         if quantity in printed:
             paper_vline(ax, printed[quantity], f"{printed[quantity]:g} {units}")
-        ax.set(xlabel=f"{quantity} ({units})", ylabel="input points")
+        ax.set(xlabel=f"{quantity} ({units})", ylabel="input points",
+               title=f"not balanced by t_end: {(~balanced).sum()} of {balanced.size}"
+               if timed else "distribution over the input ranges")
         ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 4))
         ax.legend(fontsize=7)
     fig.suptitle(title)

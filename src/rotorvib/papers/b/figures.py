@@ -326,5 +326,4 @@ def uncertainty(unc, paper):
     """Beyond the paper: Sobol indices and bands of one case (Table 2's optimum row, Fig 7)."""
     return sensitivity(unc, printed_values(unc, paper),
                        f"{unc.attrs['case_title']} (beta = {unc.attrs['design_beta']:g}, m = "
-                       f"{1e3 * unc.attrs['design_mass']:g} g): times capped at t_end; "
-                       "balanced = 1 for a run that balances")
+                       f"{1e3 * unc.attrs['design_mass']:g} g)")

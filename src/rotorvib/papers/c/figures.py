@@ -39,11 +39,12 @@ def fig4(tr, paper):
     """Fig 4: no absorber, Den Hartog single absorber, Table 2 dual absorber at resonance."""
     fig, (ax1, ax2) = figure(2, 1, figsize=(7.0, 6.2), sharex=True)
     t = tr.t.values
-    for case, label in CASES.items():
+    labels = {**CASES, "single": f"{CASES['single']}, d = {float(tr.single_d):g} m"}
+    for case, label in labels.items():
         ax1.plot(t, tr[f"theta_{case}"].values[NONLINEAR], lw=0.5, color=COLORS[case], label=label)
     for case in ("dual", "single"):
         ax2.plot(t, tr[f"theta_{case}"].values[NONLINEAR], lw=0.5, color=COLORS[case],
-                 label=CASES[case])
+                 label=labels[case])
     ax1.set(ylabel="theta (rad)", title="Fig 4: torsional response at omega_n, eqs. (8)-(10)")
     ax2.set(xlabel="time t (s)", ylabel="theta (rad)", title="zoom on the absorbers")
     top = max(np.abs(tr[f"theta_{case}"].values[NONLINEAR]).max() for case in ("dual", "single"))
@@ -170,7 +171,7 @@ def broadband(bb, paper):
     """Beyond the paper: the broadband optimum beside Table 2, the single-frequency optimum and
     Den Hartog's absorber; frequency responses, time responses at resonance, Pareto front."""
     fig, axes = figure(1, 3, figsize=(15.0, 4.8))
-    names = [str(n) for n in bb.design_name.values]
+    names = [_with_radius(bb, i) for i in range(bb.sizes["design"])]
     ax = axes[0]
     ax.semilogy(bb.w.values, bb.D_none.values, "k", lw=0.8, label="no absorber")
     for i, name in enumerate(names):
@@ -197,7 +198,7 @@ def broadband(bb, paper):
     ax.plot(mass, bb.front_band_peak.values, "o", ms=3, color="C3", label="NSGA-II front (dual)")
     order = np.argsort(mass)
     ax.plot(mass[order], bb.front_den_hartog_peak.values[order], color="C2", lw=1,
-            label="Den Hartog single absorber, same mass")
+            label=f"Den Hartog single absorber, same mass (d = {_radius(bb):g} m)")
     for i, name in enumerate(names):
         ax.plot(float(bb.added_mass[i]), float(bb.band_peak[i]), "s", color=f"C{i}", ms=7,
                 mfc="none", mew=1.5, label=name)
@@ -206,6 +207,21 @@ def broadband(bb, paper):
            title="Pareto front within the bounds of section 4")
     ax.legend(fontsize=7)
     return fig
+
+
+def _radius(bb) -> float:
+    """Radius d of the Den Hartog absorber of the broadband study (its own, chosen in the
+    config, paper_c.broadband.den_hartog_d; Fig 4's stand-in has paper_c.den_hartog.d)."""
+    keys = [str(k) for k in bb.design_key.values]
+    names = [str(n) for n in bb.parameter_name.values]
+    return float(bb.parameters.values[keys.index("den_hartog"), names.index("d1")])
+
+
+def _with_radius(bb, i: int) -> str:
+    """A broadband design's name, with the radius where it is Den Hartog's absorber."""
+    name = str(bb.design_name.values[i])
+    return f"{name} (d = {_radius(bb):g} m)" if str(bb.design_key.values[i]) == "den_hartog" \
+        else name
 
 
 def uncertainty(unc, paper):

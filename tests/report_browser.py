@@ -1,0 +1,127 @@
+"""What a reader sees of the HTML report in a real browser (headless Chromium through
+Playwright): where the landing page's parts lie in the window, and every view the sidebar and
+the result lists open, by clicking them as a reader does. tests/test_delivery.py asserts on
+what these functions return."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+SIZES = ((1280, 800), (1400, 1000), (1920, 1080))
+# Where the landing page's screenshots go: $REPORT_SCREENSHOTS, else beside the test logs of
+# CI (.ci/run keeps test-artifacts/).
+SCREENSHOTS = Path(os.environ.get("REPORT_SCREENSHOTS", Path(__file__).parents[1] / "test-artifacts"))
+
+
+@dataclass
+class Landing:
+    """Boxes (left, top, right, bottom, in CSS pixels of the window) of the landing page."""
+    width: int
+    height: int
+    title: tuple
+    totals: tuple
+    description: tuple
+    rule_graph: tuple
+
+
+def box(page, selector: str) -> tuple:
+    rect = page.eval_on_selector(selector, "e => e.getBoundingClientRect().toJSON()")
+    return rect["left"], rect["top"], rect["right"], rect["bottom"]
+
+
+def landing(browser, report: Path, width: int, height: int, screenshot: Path) -> Landing:
+    """The landing page as opened in a window of ``width`` x ``height``, without scrolling."""
+    page = browser.new_page(viewport={"width": width, "height": height})
+    page.goto(report.as_uri())
+    page.wait_for_selector("h1.title")
+    page.wait_for_selector("canvas")
+    screenshot.parent.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=screenshot)
+    seen = Landing(width, height, box(page, "h1.title"),
+                   box(page, ".prose ul:first-of-type"), box(page, ".prose"),
+                   box(page, "canvas"))
+    page.close()
+    return seen
+
+
+@dataclass
+class View:
+    """One view a reader opened: how (the clicks), what it showed, and the page errors."""
+    path: tuple[str, ...]
+    kind: str = ""              # "img", "html" or "" (nothing shown)
+    image_width: int = 0
+    table_rows: int = -1        # rows of the table inside an HTML result (-1: none)
+    text: str = ""
+    errors: list[str] = field(default_factory=list)
+
+
+def _sidebar_links(page) -> list[str]:
+    return page.eval_on_selector_all("nav a", "links => links.map(a => a.innerText.trim())")
+
+
+def _click_text(page, text: str) -> None:
+    page.locator("nav a", has_text=text).first.click()
+    page.wait_for_timeout(100)
+
+
+def _result_rows(page) -> list[str]:
+    return page.eval_on_selector_all(
+        "nav table tbody tr", "rows => rows.map(r => r.cells[0].innerText.trim())")
+
+
+def _shown(page, path: tuple[str, ...], errors: list[str]) -> View:
+    """What the content area shows after the click that ``path`` ends with."""
+    page.wait_for_timeout(150)
+    view = View(path, errors=list(errors))
+    frame = page.query_selector("iframe")
+    image = page.query_selector("div.p-3 > img")  # the content area's image view
+    if frame is None and image is not None:
+        image.evaluate("img => img.decode()")
+        view.kind, view.image_width = "img", image.evaluate("img => img.naturalWidth")
+    if frame is not None:
+        view.kind = "html"
+        content = frame.content_frame()
+        content.wait_for_load_state()
+        view.table_rows = content.evaluate(
+            "() => document.querySelector('table') ? "
+            "document.querySelectorAll('table tbody tr').length : -1")
+        view.text = content.evaluate("() => document.body.innerText")
+    errors.clear()
+    return view
+
+
+def every_view(browser, report: Path) -> tuple[list[str], list[View], dict[str, list[str]]]:
+    """Click every category of the sidebar, every subcategory in it and the view button of
+    every result listed, as a reader would: the categories, every view opened, and the labels
+    each list showed, in its order (by "category/subcategory")."""
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    errors: list[str] = []
+    page.on("pageerror", lambda error: errors.append(str(error)))
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.goto(report.as_uri())
+    page.wait_for_selector("h1.title")
+    categories = page.evaluate("Object.keys(categories)")
+    views, lists = [], {}
+    for category in categories:
+        page.goto(report.as_uri())
+        page.wait_for_selector("h1.title")
+        _click_text(page, category)
+        subcategories = [s for s in page.evaluate(f"Object.keys(categories[{category!r}])")]
+        for sub in subcategories:
+            page.goto(report.as_uri())
+            page.wait_for_selector("h1.title")
+            _click_text(page, category)
+            if len(subcategories) > 1:
+                _click_text(page, sub)
+            labels = _result_rows(page)
+            lists[f"{category}/{sub}"] = labels
+            if not labels:
+                views.append(View((category, sub), errors=list(errors)))
+                errors.clear()
+            for i, label in enumerate(labels):
+                page.locator("nav table tbody tr").nth(i).locator("a").first.click()
+                views.append(_shown(page, (category, sub, label), errors))
+    page.close()
+    return categories, views, lists
