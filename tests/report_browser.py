@@ -10,8 +10,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 SIZES = ((1280, 800), (1400, 1000), (1920, 1080))
-# Where the landing page's screenshots go: $REPORT_SCREENSHOTS, else beside the test logs of
-# CI (.ci/run keeps test-artifacts/).
+# Where the landing page's screenshots go: $REPORT_SCREENSHOTS (.ci/run sets it), else
+# test-artifacts/ in the repository.
 SCREENSHOTS = Path(os.environ.get("REPORT_SCREENSHOTS", Path(__file__).parents[1] / "test-artifacts"))
 
 
