@@ -172,7 +172,7 @@ def test_failures_are_reported():
     p_bad = p.copy()
     p_bad[0] = np.nan
     # the public entry points refuse the bad input before integrating ...
-    with pytest.raises(ValueError, match="p: non-finite"):
+    with pytest.raises(ValueError, match=r"p\[0\] = nan: must be finite"):
         run(engine.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
     # ... and the engine itself flags a failed run in its batch instead of returning numbers
     metrics = np.stack([engine.integrate(engine.FIXED, q, ic(), 0.0, 0.5, 1e-8, 1e-11, 1e-3,

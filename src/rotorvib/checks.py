@@ -12,10 +12,12 @@ def number(name: str, value, *, minimum: float = 0.0, inclusive: bool = False,
            what: str = "") -> float:
     """``value`` as a float; ``ValueError`` naming ``name`` unless it is finite and above
     ``minimum`` (or equal to it, if ``inclusive``).  ``what`` adds a reason to the message."""
+    want = f"must be a finite number {'>=' if inclusive else '>'} {minimum:g}{what}"
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} = {value!r}: {want}")
     ok = np.isfinite(value) and (value >= minimum if inclusive else value > minimum)
     if not ok:
-        raise ValueError(f"{name} = {float(value)!r}: must be a finite number "
-                         f"{'>=' if inclusive else '>'} {minimum:g}{what}")
+        raise ValueError(f"{name} = {float(value)!r}: {want}")
     return float(value)
 
 
@@ -28,16 +30,26 @@ def require(obj, positive=(), nonnegative=()) -> None:
 
 
 def finite_array(name: str, value, *, shape: tuple | None = None, dtype=float) -> np.ndarray:
-    """``value`` as an array of ``dtype``; ``ValueError`` unless every entry is finite and, where
-    ``shape`` is given, the shape matches (``None`` entries match any length)."""
-    a = np.asarray(value, dtype=dtype)
+    """``value`` as an array of ``dtype``; ``ValueError`` unless it holds real numbers (not
+    complex, text or objects), every entry is finite and, where ``shape`` is given, the shape
+    matches (``None`` entries match any length)."""
+    try:
+        given = np.asarray(value)
+        if given.dtype.kind not in "biuf" + ("c" if np.dtype(dtype).kind == "c" else ""):
+            raise TypeError(f"entries of type {given.dtype}")
+        a = given.astype(dtype)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name}: must be an array of real numbers ({error})") from None
     if shape is not None and (a.ndim != len(shape) or any(
             want is not None and got != want for got, want in zip(a.shape, shape))):
         want = "(" + ", ".join("any" if s is None else str(s) for s in shape) + ")"
         raise ValueError(f"{name}: shape {a.shape}, expected {want}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: {int(np.size(a) - np.isfinite(a).sum())} of {a.size} entries "
-                         "are not finite")
+    finite = np.isfinite(a)
+    if not finite.all():
+        first = ", ".join(str(i) for i in np.argwhere(~finite)[0])
+        where = f"{name}[{first}]" if a.ndim else name
+        raise ValueError(f"{where} = {a[~finite][0].item()!r}: must be finite "
+                         f"({a.size - int(finite.sum())} of {a.size} entries are not)")
     return a
 
 

@@ -6,6 +6,8 @@ never turned into numbers.
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 
@@ -20,6 +22,9 @@ RTOL_MIN = 100 * np.finfo(float).eps
 def check_tolerances(rtol: float, atol: float) -> None:
     """Raise ``ValueError`` naming ``rtol`` or ``atol`` unless ``RTOL_MIN <= rtol < 1`` and
     ``atol >= 0``, both finite."""
+    for name, value in (("rtol", rtol), ("atol", atol)):
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+            raise ValueError(f"{name} = {value!r}: must be a real number")
     if not (np.isfinite(rtol) and RTOL_MIN <= rtol < 1):
         raise ValueError(f"rtol = {rtol!r}: must lie in [{RTOL_MIN:.3g}, 1) (double precision "
                          "cannot deliver a smaller relative error)")

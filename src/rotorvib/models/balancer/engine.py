@@ -1,7 +1,7 @@
 """Compiled core of the automatic ball balancer: its right-hand sides and an adaptive
 Dormand-Prince 5(4) integrator (DOPRI5) that feeds samples to the in-loop analysers
 (``analysers``) and stops when ``settling`` says the answer is known; ``dop853`` holds the
-8th-order integrator, ``batch`` runs either in parallel.
+8th-order integrator; ``simulate`` runs either, one run or a batch on threads.
 
 Everything here is numba-compiled with ``cache=True``; model parameters travel as arrays (never as
 globals, which a cache would freeze), and the integrators' step loops work on borrowed views of

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorvib.checks import require
+from rotorvib.checks import integer, require
 
 from rotorvib.models.balancer import kinematics
 
@@ -29,6 +29,12 @@ class Dimensionless:
     zeta: float
     beta: float
     n: int = 2
+
+    def __post_init__(self):
+        require(self, positive=("mu", "rho"), nonnegative=("zeta", "beta"))
+        if not self.mu < 1:
+            raise ValueError(f"Dimensionless.mu = {self.mu!r}: must lie in (0, 1) (m / M_t)")
+        integer("Dimensionless.n", self.n, 2)
 
     def balanced_angle(self) -> float:
         """Ball angle of the balanced state for two balls, ``arccos(-1/(2 rho))`` (rad)."""
@@ -50,8 +56,7 @@ class Balancer:
 
     def __post_init__(self):
         require(self, positive=("M", "m", "R", "k"), nonnegative=("eps", "c", "D"))
-        if int(self.n) != self.n or self.n < 2:
-            raise ValueError(f"Balancer.n = {self.n!r}: must be an integer >= 2")
+        integer("Balancer.n", self.n, 2)
 
     @classmethod
     def from_paper_b(cls, *, M, k, R, m_bar, eps_bar, zeta, beta, n=2) -> "Balancer":
@@ -108,7 +113,8 @@ def balanced_angle(unbalance: float, ball_moment: float, n: int = 2) -> float:
 class SpeedProfile:
     """Prescribed disk speed: ``kind`` "constant" or "runup" (eq. 37 scaled to ``omega`` with
     ramp time ``t_ramp``), disk-angle ``kinematics`` "printed" (paper B's ``w t``) or
-    "consistent" (``int w dt``).  Units follow the form: rad/s and s, or dimensionless."""
+    "consistent" (``int w dt``).  Units follow the form: rad/s and s, or dimensionless.
+    ``omega`` and ``t_ramp`` are finite and > 0: a disk that does not turn has no balancer."""
 
     omega: float
     kind: str = "constant"
@@ -116,13 +122,13 @@ class SpeedProfile:
     kinematics: str = "consistent"
 
     def __post_init__(self):
-        if self.kind not in ("constant", "runup"):
-            raise ValueError(f"speed profile kind must be 'constant' or 'runup', not {self.kind!r}")
-        if self.kinematics not in ("printed", "consistent"):
-            raise ValueError("kinematics must be 'printed' or 'consistent', "
-                             f"not {self.kinematics!r}")
-        if self.t_ramp <= 0:
-            raise ValueError(f"t_ramp must be > 0, not {self.t_ramp}")
+        require(self, positive=("omega", "t_ramp"))
+        for name, allowed in (("kind", ("constant", "runup")),
+                              ("kinematics", ("printed", "consistent"))):
+            value = getattr(self, name)
+            if not isinstance(value, str) or value not in allowed:
+                raise ValueError(f"SpeedProfile.{name} = {value!r}: must be one of "
+                                 f"{list(allowed)}")
 
     @property
     def profile_code(self) -> int:

@@ -16,9 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorvib.checks import finite_array, number
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.methods.numba_cache import compile_lock
-from rotorvib.models.balancer import analysers, dop853, engine, settling
+from rotorvib.models.balancer import analysers, dop853, engine, inputs, settling
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
@@ -66,12 +67,11 @@ class BalanceCriterion:
 
     def __post_init__(self):
         for name in ("r_threshold", "f_threshold", "t_end", "sample_dt"):
-            value = getattr(self, name)
-            if not (np.isfinite(value) and value > 0):
-                raise ValueError(f"{name} = {value!r}: must be a finite number > 0")
+            object.__setattr__(self, name, number(name, getattr(self, name)))
         if self.sample_dt > self.t_end:
             raise ValueError(f"sample_dt = {self.sample_dt!r}: must not exceed t_end = "
                              f"{self.t_end!r}")
+        inputs.samples(self.t_end, self.sample_dt)
 
     @classmethod
     def from_config(cls, balance: dict, k: float) -> "BalanceCriterion":
@@ -83,7 +83,7 @@ class BalanceCriterion:
     @property
     def n_samples(self) -> int:
         """Number of samples ``t = 0, sample_dt, ...`` up to ``t_end``."""
-        return int(np.floor(self.t_end / self.sample_dt + 1e-9)) + 1
+        return inputs.samples(self.t_end, self.sample_dt)
 
     @property
     def times(self) -> np.ndarray:
@@ -148,14 +148,15 @@ class Trajectory:
         return k * r + c * rdot
 
 
-def _check_inputs(p, y0, rtol, atol) -> None:
-    """``ValueError`` for tolerances out of range or a non-finite parameter or state."""
+def _checked(form, params, y0s, criterion, rtol, atol, names=("params", "y0s")):
+    """The form code and the parameter and state rows of a run or batch, checked
+    (:mod:`inputs`) with the criterion and tolerances: ``ValueError`` naming the argument."""
+    form = inputs.form(form)
+    inputs.instance("criterion", criterion, BalanceCriterion)
     check_tolerances(rtol, atol)
-    for name, values in (("p", p), ("y0", y0)):
-        bad = np.flatnonzero(~np.isfinite(np.asarray(values, float)).reshape(len(values), -1)
-                             .all(axis=-1))
-        if bad.size:
-            raise ValueError(f"{name}: non-finite entries in row(s)/index(es) {bad[:10].tolist()}")
+    params = inputs.parameter_rows(form, params, names[0])
+    inputs.work(form, params, criterion.t_end, names[0])
+    return form, params, inputs.state_rows(form, params, y0s, *names[::-1])
 
 
 def _raise_on_failure(m):
@@ -168,7 +169,7 @@ def _raise_on_failure(m):
 def _integrator(method: str):
     """The compiled integrator of ``method`` and the arguments that follow the common ones
     (DOP853's tableau)."""
-    if method not in dop853.METHODS:
+    if not isinstance(method, str) or method not in dop853.METHODS:
         raise ValueError(f"method = {method!r}: must be one of {sorted(dop853.METHODS)}")
     if dop853.METHODS[method] == dop853.DOP853:
         return dop853.integrate_dop853, dop853.tableau()
@@ -178,12 +179,18 @@ def _integrator(method: str):
 def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *,
         rtol: float = RTOL, atol: float = ATOL, method: str = METHOD, store: bool = False):
     """Integrate one run from t = 0 to ``criterion.t_end`` with ``method`` ("dopri5" or
-    "dop853"); return a :class:`Trajectory` (``store=True``) or a :class:`RunResult`."""
-    _check_inputs(p, y0, rtol, atol)
+    "dop853"); return a :class:`Trajectory` (``store=True``) or a :class:`RunResult`.
+    ``p`` is a parameter row of the form's layout (``engine.P_FIXED`` or ``engine.P_ROT``),
+    ``y0`` the state of its ``n`` balls, ``2 (n + 2)`` entries; ``ValueError`` names an argument
+    out of range (:mod:`inputs`)."""
+    p, y0 = finite_array("p", p, shape=(None,)), finite_array("y0", y0, shape=(None,))
+    form, params, states = _checked(form, p[None], y0[None], criterion, rtol, atol,
+                                    names=("p", "y0"))
+    inputs.flag("store", store)
     integrate, tableau = _integrator(method)
     c = criterion
-    out = np.empty((c.n_samples if store else 0, len(y0)))
-    args = (form, np.asarray(p, float), np.asarray(y0, float), 0.0, float(c.t_end), rtol, atol,
+    out = np.empty((c.n_samples if store else 0, states.shape[1]))
+    args = (form, params[0], states[0], 0.0, float(c.t_end), rtol, atol,
             c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS, out, settling.disabled())
     with _first_use(integrate):
         m = integrate(*args, *tableau)
@@ -200,17 +207,13 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
     """Paper B's balancer from rest relative to the disk, C at ``(r0, theta0)``, balls at
     ``phi0`` (rad) (eq. 36).  The force threshold defaults to ``k r_threshold`` (the force of
     the balance criterion).  Returns a :class:`RunResult`, or a :class:`Trajectory` with
-    ``store=True``.  Raises ``ValueError`` naming a non-finite parameter of ``b`` or
-    ``profile``, a criterion out of range or tolerances below double precision."""
-    for obj in (b, profile):
-        for name, value in vars(obj).items():
-            if isinstance(value, float) and not np.isfinite(value):
-                raise ValueError(f"{type(obj).__name__}.{name} = {value!r}: must be finite")
-    for name, value in (("r0", r0), ("theta0", theta0), *(
-            (f"phi0[{i}]", v) for i, v in enumerate(np.atleast_1d(phi0)))):
-        if not np.isfinite(value):
-            raise ValueError(f"{name} = {value!r}: must be finite")
-    y0 = fixed_state(b.n, r0=r0, theta0=theta0, phi0=phi0)
+    ``store=True``.  Raises ``ValueError`` naming an argument out of range: ``b`` and
+    ``profile`` check their own fields, the rest is checked here and by :func:`run`."""
+    inputs.instance("b", b, Balancer)
+    inputs.instance("profile", profile, SpeedProfile)
+    y0 = fixed_state(b.n, r0=number("r0", r0, inclusive=True),
+                     theta0=number("theta0", theta0, minimum=-np.inf),
+                     phi0=finite_array("phi0", phi0, shape=(b.n,)))
     criterion = BalanceCriterion(r_threshold=r_threshold, t_end=t_end, sample_dt=sample_dt,
                                  f_threshold=b.k * r_threshold if f_threshold is None
                                  else f_threshold)
@@ -232,12 +235,15 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     use in a process, with the stop certificates and one run, holds the compile lock:
     :func:`_first_use`). Runs are processed in chunks of ``chunk`` so that progress can be
     shown on stderr (in one piece without it). Failed runs are flagged in the ``status``
-    column, not raised: see :func:`check_batch`.
+    column, not raised: see :func:`check_batch`.  ``params`` holds one parameter row per run
+    (``engine.P_FIXED`` or ``engine.P_ROT``), ``y0s`` one state row per run; every argument is
+    checked first (:mod:`inputs`), with ``ValueError`` naming it.
     """
     c = criterion
-    params = np.ascontiguousarray(params, dtype=float)
-    y0s = np.ascontiguousarray(y0s, dtype=float)
-    _check_inputs(params, y0s, rtol, atol)
+    form, params, y0s = _checked(form, params, y0s, criterion, rtol, atol)
+    inputs.instance("stop", stop, settling.StopRule, optional=True)
+    seed, chunk = inputs.seed(seed), inputs.chunk(chunk)
+    progress = inputs.flag("progress", progress)
     integrate, tableau = _integrator(method)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)

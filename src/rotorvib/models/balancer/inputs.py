@@ -1,0 +1,155 @@
+"""Checks of what the compiled engine is handed: every array, flag and size of a run or batch,
+before it reaches compiled code, which trusts its arguments (a parameter row of the wrong
+length, or a ball count that does not match the state, reads and writes past the end of an
+array there).  Each check raises ``ValueError`` naming the argument, what it got and what is
+allowed.
+
+Parameter rows (``engine.P_FIXED``, ``engine.P_ROT``) are checked column by column against
+:data:`FIXED_COLUMNS` and :data:`ROTATING_COLUMNS`; a state row of ``n`` balls has
+``2 (n + 2)`` entries.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+from rotorvib.checks import finite_array, integer
+from rotorvib.models.balancer import engine, kinematics
+
+#: A run's samples (``t_end / sample_dt + 1``) at most: a stored trajectory of this many rows of
+#: a two-ball state takes 640 MB.
+MAX_SAMPLES = 10_000_000
+#: Balls of a balancer at most (a state of 2 (n + 2) entries); paper A and B have two.
+MAX_BALLS = 64
+#: The work of a run at most, in radians of its fastest time scale (:func:`fastest_rate`)
+#: over ``t_end``: an explicit integrator takes at least one step per few radians, so this
+#: bounds a run to some ten million steps (seconds), where paper B's run-up takes 4 000.
+MAX_RADIANS = 1e7
+
+_POSITIVE, _NONNEGATIVE = (0.0, False), (0.0, True)
+_PROFILES = (kinematics.CONSTANT, kinematics.RUNUP)
+
+#: Allowed values of each column of a FIXED-form parameter row: ``(minimum, inclusive)`` for a
+#: number, a tuple of codes for a flag, ``"balls"`` for the ball count.
+FIXED_COLUMNS = {"M": _POSITIVE, "m": _POSITIVE, "R": _POSITIVE, "eps": _NONNEGATIVE,
+                 "k": _POSITIVE, "c": _NONNEGATIVE, "D": _NONNEGATIVE, "n": "balls",
+                 "Omega": _POSITIVE, "T_ramp": _POSITIVE, "profile": _PROFILES,
+                 "kinematics": (kinematics.PRINTED, kinematics.CONSISTENT)}
+#: The same for a ROTATING-form row; ``mu = m / M_t`` lies in (0, 1).
+ROTATING_COLUMNS = {"mu": _POSITIVE, "rho": _POSITIVE, "zeta": _NONNEGATIVE,
+                    "beta": _NONNEGATIVE, "n": "balls", "Omega": _POSITIVE,
+                    "T_ramp": _POSITIVE, "profile": _PROFILES}
+_COLUMNS = {engine.FIXED: (engine.P_FIXED, FIXED_COLUMNS),
+            engine.ROTATING: (engine.P_ROT, ROTATING_COLUMNS)}
+
+
+def form(value) -> int:
+    """``value`` as a form code, ``engine.FIXED`` or ``engine.ROTATING``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value not in _COLUMNS:
+        raise ValueError(f"form = {value!r}: must be engine.FIXED ({engine.FIXED}) or "
+                         f"engine.ROTATING ({engine.ROTATING})")
+    return int(value)
+
+
+def parameter_rows(form_code: int, params, name: str = "params") -> np.ndarray:
+    """``params`` as a C-contiguous float array of rows of the form's layout, every column in
+    its range."""
+    layout, allowed = _COLUMNS[form_code]
+    rows = finite_array(name, params, shape=(None, len(layout)))
+    for j, column in enumerate(layout):
+        values, rule = rows[:, j], allowed[column]
+        if rule == "balls":
+            bad = (values != np.round(values)) | (values < 1) | (values > MAX_BALLS)
+            want = f"an integer in [1, {MAX_BALLS}]"
+        elif isinstance(rule[0], int):
+            bad = ~np.isin(values, rule)
+            want = f"one of {list(rule)}"
+        else:
+            minimum, inclusive = rule
+            bad = values < minimum if inclusive else values <= minimum
+            want = f"{'>=' if inclusive else '>'} {minimum:g}"
+            if column == "mu":
+                bad |= values >= 1
+                want = "in (0, 1)"
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"{name}[{i}, {j}] ({column}) = {values[i].item()!r}: must be "
+                             f"{want} ({int(bad.sum())} of {len(values)} rows out of range)")
+    return np.ascontiguousarray(rows)
+
+
+def state_rows(form_code: int, params: np.ndarray, y0s, name: str = "y0s",
+               params_name: str = "params") -> np.ndarray:
+    """``y0s`` as a C-contiguous float array with one state row per parameter row, each of the
+    length its row's ball count gives."""
+    states = finite_array(name, y0s, shape=(len(params), None))
+    balls = params[:, engine.P_FIXED.index("n") if form_code == engine.FIXED
+                   else engine.P_ROT.index("n")]
+    width = 2 * (balls.astype(int) + 2)
+    wrong = np.flatnonzero(width != states.shape[1])
+    if wrong.size:
+        i = int(wrong[0])
+        raise ValueError(f"{name}: rows of {states.shape[1]} entries, but {params_name}[{i}] "
+                         f"has n = {int(balls[i])} balls, a state of {width[i]} entries")
+    return np.ascontiguousarray(states)
+
+
+def samples(t_end: float, sample_dt: float) -> int:
+    """The number of samples of a run, ``floor(t_end / sample_dt) + 1``; at most
+    :data:`MAX_SAMPLES`."""
+    n = int(np.floor(t_end / sample_dt + 1e-9)) + 1
+    if n > MAX_SAMPLES:
+        raise ValueError(f"t_end / sample_dt = {t_end!r} / {sample_dt!r}: {n:.3g} samples, at "
+                         f"most {MAX_SAMPLES:.0e}")
+    return n
+
+
+def chunk(value) -> int:
+    return integer("chunk", value, 1)
+
+
+def seed(value) -> int:
+    return integer("seed", value, 0)
+
+
+def flag(name: str, value) -> bool:
+    """``value`` as a bool; ``ValueError`` for anything but ``True`` or ``False``."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} = {value!r}: must be True or False")
+    return bool(value)
+
+
+def instance(name: str, value, kind: type, *, optional: bool = False):
+    """``value`` itself; ``ValueError`` unless it is a ``kind`` (or None, if ``optional``)."""
+    if (value is None and optional) or isinstance(value, kind):
+        return value
+    raise ValueError(f"{name} = {value!r}: must be a {kind.__name__}"
+                     f"{' or None' if optional else ''}")
+
+
+def fastest_rate(form_code: int, params: np.ndarray) -> np.ndarray:
+    """The fastest rate (1/time unit of the form) of each parameter row: the disk speed
+    ``Omega``, the natural frequency ``sqrt(k / M_t)``, the support's damping rate ``c / M_t``
+    and the balls' drag rate ``D / (m R^2)`` (FIXED); ``Omega``, 1, ``2 zeta`` and ``beta``
+    (ROTATING, time in ``1 / w_n``)."""
+    if form_code == engine.FIXED:
+        M, m, R, _, k, c, D, n, omega = params[:, :9].T
+        mt = M + n * m
+        return np.max([omega, np.sqrt(k / mt), c / mt, D / (m * R**2)], axis=0)
+    zeta, beta, omega = params[:, 2], params[:, 3], params[:, 5]
+    return np.max([omega, np.ones_like(omega), 2 * zeta, beta], axis=0)
+
+
+def work(form_code: int, params: np.ndarray, t_end: float, name: str = "params") -> None:
+    """``ValueError`` naming the first row whose run would span more than
+    :data:`MAX_RADIANS` of its fastest rate by ``t_end``."""
+    with np.errstate(over="ignore"):
+        radians = fastest_rate(form_code, params) * t_end
+    too_long = np.flatnonzero(~(radians <= MAX_RADIANS))
+    if too_long.size:
+        i = int(too_long[0])
+        raise ValueError(f"{name}[{i}] with t_end = {t_end!r}: the run spans {radians[i]:.3g} "
+                         f"radians of its fastest rate (speed, natural frequency or damping "
+                         f"rate), at most {MAX_RADIANS:.0e}")
