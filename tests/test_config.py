@@ -5,6 +5,7 @@ import yaml
 
 from conftest import ROOT
 from rotorvib.io import config as config_module
+from rotorvib.io import strict_yaml
 from rotorvib.io.config import ConfigError, config_hash, main, merge, validate_config
 
 
@@ -96,19 +97,19 @@ def test_config_check_command_gives_file_line_and_column(tmp_path, capsys):
 def test_libyaml_parser_reads_every_yaml_file_as_pyyaml_does(name):
     """The fast loader (libyaml's parser) and PyYAML's own give the same data, value and type
     (``1e-9`` a float in both)."""
-    fast, own = (config_module._load(ROOT / name, loader) for loader in
-                 (config_module._FastStrictLoader, config_module._StrictLoader))
+    fast, own = (strict_yaml._load_file(ROOT / name, loader) for loader in
+                 (strict_yaml.FastStrictLoader, strict_yaml.StrictLoader))
     assert repr(fast) == repr(own)
-    assert issubclass(config_module._FastStrictLoader, yaml.CSafeLoader)
+    assert issubclass(strict_yaml.FastStrictLoader, yaml.CSafeLoader)
 
 
 def test_both_parsers_refuse_a_duplicate_key_at_its_place(tmp_path):
     twice = tmp_path / "twice.yaml"
     twice.write_text("paper_b:\n  machine:\n    zeta: 0.01\n    zeta: 1e-2\n")
-    for loader in (config_module._FastStrictLoader, config_module._StrictLoader):
+    for loader in (strict_yaml.FastStrictLoader, strict_yaml.StrictLoader):
         with pytest.raises(ConfigError,
                            match=r"twice.yaml:4:5: duplicate key 'zeta' \(first at line 3\)"):
-            config_module._load(twice, loader)
+            strict_yaml._load_file(twice, loader)
 
 
 def test_nested_command_line_overrides_are_read_as_yaml():

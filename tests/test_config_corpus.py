@@ -147,6 +147,24 @@ def test_every_malformed_config_is_rejected_naming_its_key(key, value, named):
     ("paper_b:\n  machine:\n\tzeta: 0.01\n", ":3:1: found character '\\t'"),
     ("paper_b: [1, 2\n", ":2:1:"),
     ("- 1\n- 2\n", "must be a mapping of keys, not list"),
+    # YAML 1.1 readings refused with their place (octal, sexagesimal, '_', binary, yes/no/on)
+    ("paper_b:\n  ga:\n    seed: 0777\n", ":3:11: '0777' reads differently in YAML 1.1"),
+    ("paper_b:\n  balance:\n    t_end: 1:30\n", ":3:12: '1:30' reads differently"),
+    ("paper_b:\n  ga:\n    seed: 1_000\n", ":3:11: '1_000' reads differently"),
+    ("paper_b:\n  ga:\n    seed: 0b101\n", ":3:11: '0b101' reads differently"),
+    ("paper_b:\n  progress: yes\n", ":2:13: 'yes' reads differently"),
+    ("paper_b:\n  on: 1\n", ":2:3: 'on' reads differently"),
+    # keys that are not text, where Snakemake's validator crashed
+    ("paper_b:\n  balance_studies:\n    1: {}\n", ":3:5: key 1 is a int, not text"),
+    ("paper_b:\n  balance_studies:\n    true: {}\n", ":3:5: key True is a bool, not text"),
+    ("paper_b:\n  balance_studies:\n    ~: {}\n", ":3:5: key None is a NoneType, not text"),
+    # a template runs Python: refused
+    ("__use_yte__: true\npaper_b: {}\n", ":1:1: '__use_yte__' asks for Snakemake's YTE"),
+    ("paper_b:\n  __definitions__: [import os]\n", ":2:3: '__definitions__' asks for"),
+    # an alias bomb: nine levels of nine aliases (9^9 values), measured without expanding it
+    ("a0: &a0 [1, 2, 3, 4, 5, 6, 7, 8, 9]\n" + "".join(
+        f"a{i}: &a{i} [{', '.join([f'*a{i - 1}'] * 9)}]\n" for i in range(1, 9)),
+     "its aliases expand to 4.9e+08 values; at most 1e+06"),
 ])
 def test_yaml_errors_name_file_line_and_column(tmp_path, text, expected):
     path = tmp_path / "bad.yaml"
@@ -154,6 +172,32 @@ def test_yaml_errors_name_file_line_and_column(tmp_path, text, expected):
     with pytest.raises(ConfigError) as error:
         load_yaml(path)
     assert str(path) in str(error.value) and expected in str(error.value)
+
+
+def test_yaml_1_2_numbers_and_quoted_text(tmp_path):
+    """YAML 1.2 core schema: 0o and 0x integers, floats with and without exponent, .inf,
+    true/false, null; quoted text stays text (never read again as a number)."""
+    path = tmp_path / "numbers.yaml"
+    path.write_text("a: {o: 0o17, x: 0x1F, i: -12, f: 1., e: 1e-9, g: +2.5E3, inf: -.inf}\n"
+                    "b: {t: true, f: False, n: null, e: ~, zero: 0, q: '0777', s: '0.01',"
+                    " y: y, 'no': 'no'}\n")
+    assert load_yaml(path) == {
+        "a": {"o": 15, "x": 31, "i": -12, "f": 1.0, "e": 1e-9, "g": 2500.0, "inf": -INF},
+        "b": {"t": True, "f": False, "n": None, "e": None, "zero": 0, "q": "0777", "s": "0.01",
+              "y": "y", "no": "no"}}
+
+
+@pytest.mark.parametrize("make, expected", [
+    (lambda p: p.write_bytes(b"paper_b:\n  name: \xff\xfe\n"), "not UTF-8 text"),
+    (lambda p: p.write_text("x: [" + "1, " * 400_000 + "1]\n"), "bytes; a configuration file "
+                                                                   "may have at most 1000000"),
+])
+def test_files_that_cannot_be_configurations_are_refused_before_parsing(tmp_path, make,
+                                                                         expected):
+    path = tmp_path / "bad.yaml"
+    make(path)
+    with pytest.raises(ConfigError, match=expected):
+        load_yaml(path)
 
 
 def test_exponent_notation_is_a_number(tmp_path):
@@ -166,6 +210,16 @@ def test_exponent_notation_is_a_number(tmp_path):
     (DUPLICATE_KEY, "duplicate key 'zeta'"),
     ("paper_b:\n  balance:\n    r_threshold: .nan\n", "'paper_b.balance.r_threshold'"),
     ("paper_b:\n  ga:\n    mass: [0.001, 0.02]\n", "'paper_b.ga.mass'"),
+    ("paper_b:\n  ga:\n    seed: 0777\n", "'0777' reads differently in YAML 1.1 and 1.2"),
+    ("paper_b:\n  balance_studies:\n    yes: {}\n", "'yes' reads differently"),
+    ("paper_b:\n  balance_studies:\n    1: {}\n", "key 1 is a int, not text"),
+    ("__use_yte__: true\n", "'__use_yte__' asks for Snakemake's YTE templates"),
+    # quoted text in a file is text (Snakemake's reading typed it again): one verdict
+    ("paper_b:\n  balance:\n    r_threshold: '0.0001'\n",
+     "'paper_b.balance.r_threshold': '0.0001' is a string, not a number"),
+    # the same tolerance refused in an override file as in config/config.yaml
+    ("paper_b:\n  balance:\n    integrator:\n      rtol: 1e-16\n",
+     "'paper_b.balance.integrator.rtol'"),
 ])
 def test_snakemake_stops_before_any_job(tmp_path, text, named):
     bad = tmp_path / "bad.yaml"

@@ -5,7 +5,6 @@ from pathlib import Path
 from types import SimpleNamespace
 
 from snakemake.exceptions import WorkflowError
-from snakemake.utils import update_config
 
 from rotorvib.io.config import (
     INPUTS_CONFIG_PARAM,
@@ -13,19 +12,26 @@ from rotorvib.io.config import (
     config_hash,
     job_config,
     load_yaml,
-    typed_overrides,
     validate_config,
+    workflow_config,
 )
 from rotorvib.io.fingerprint import code_fingerprint
 from rotorvib.report import entry_label, label, names_in, subcategory
 
 try:
-    # Snakemake's own loader keeps a duplicate key's last value: read each file strictly too.
-    for _path in workflow.configfiles:
-        load_yaml(_path)
-    # and it leaves the values inside a nested `--config` override as text: type them.
-    update_config(config, typed_overrides(workflow.config_settings.overwrite_config))
-    config.update(validate_config(config, load_yaml("config/schema.yaml")))
+    # The configuration as this package reads it (rotorvib.io.strict_yaml: YAML 1.2, strict),
+    # replacing Snakemake's reading (YAML 1.1, a duplicate key's last value kept), from the
+    # same files in the same order: the Snakefile's `configfile:`, each --configfile, --config.
+    _settings = workflow.config_settings
+    _given = [Path(f).resolve() for f in _settings.configfiles]
+    _read = workflow_config(
+        [f for f in workflow.configfiles if Path(f).resolve() not in _given],
+        _settings.configfiles,
+        dict(_settings.config),
+        replace_base=_settings.replace_workflow_config,
+    )
+    config.clear()
+    config.update(validate_config(_read, load_yaml("config/schema.yaml")))
 except ConfigError as error:
     raise WorkflowError(str(error)) from None
 

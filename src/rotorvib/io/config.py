@@ -1,8 +1,8 @@
 """Loading, validating and fingerprinting the pipeline configuration.
 
-Files are read by a strict YAML loader: a duplicate key or a syntax error is reported with its
-file, line and column, and ``1e-9`` is a number (YAML 1.2) rather than a string.  The
-configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
+Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.io.strict_yaml`): a duplicate key,
+a syntax error or a scalar that YAML 1.1 reads otherwise is reported with its file, line and
+column, and ``1e-9`` is a number rather than a string.  The configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
 computation: every number must be finite, an integer must be written as one, and the schema's
 extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``, ``x-at-least``, a
 cap on the points of a grid).  Defaults given in the schema are filled in, and every
@@ -21,52 +21,16 @@ import copy
 import hashlib
 import json
 import math
-import re
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import yaml
 
+from rotorvib.io.strict_yaml import ConfigError, load_value, load_yaml
+
 if TYPE_CHECKING:
     import jsonschema
-
-
-class ConfigError(ValueError):
-    """The configuration does not satisfy the schema; the message lists every violation."""
-
-
-class _StrictMappings:
-    """Refuses duplicate keys (YAML would keep the last value silently)."""
-
-    def construct_mapping(self, node, deep=False):
-        seen = {}
-        for key_node, _ in node.value:
-            key = self.construct_object(key_node, deep=deep)
-            if key in seen:
-                mark = key_node.start_mark
-                raise ConfigError(f"{mark.name}:{mark.line + 1}:{mark.column + 1}: duplicate key "
-                                  f"{key!r} (first at line {seen[key] + 1}); YAML would silently "
-                                  "keep the last value")
-            seen[key] = key_node.start_mark.line
-        return super().construct_mapping(node, deep=deep)
-
-
-class _StrictLoader(_StrictMappings, yaml.SafeLoader):
-    """The strict loader on PyYAML's own parser, whose syntax errors say most (that a tab
-    cannot indent, for one)."""
-
-
-class _FastStrictLoader(_StrictMappings, getattr(yaml, "CSafeLoader", yaml.SafeLoader)):
-    """The strict loader on libyaml's parser, where PyYAML has it: a fifth of the time on the
-    configuration and the schema, which every ``snakemake`` command reads."""
-
-
-for _loader in (_StrictLoader, _FastStrictLoader):
-    _loader.add_implicit_resolver(
-        "tag:yaml.org,2002:float",
-        re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$"),
-        list("-+0123456789."))
 
 
 #: The parameter through which the workflow gives a job the configuration hash of each input
@@ -80,40 +44,15 @@ def job_config(params) -> dict:
     return {k: v for k, v in params.items() if k != INPUTS_CONFIG_PARAM}
 
 
-def _load(path: str | Path, loader) -> Any:
-    with open(path, encoding="utf-8") as fh:
-        return yaml.load(fh, Loader=loader)
-
-
-def load_yaml(path: str | Path) -> dict:
-    """A YAML mapping from ``path``; :class:`ConfigError` with file, line and column for a
-    syntax error or a duplicate key, and for a file that is not a mapping."""
-    try:
-        try:
-            data = _load(path, _FastStrictLoader)
-        except yaml.YAMLError:  # read again for the more telling message
-            data = _load(path, _StrictLoader)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)
-        problem = error.problem or error.context
-        hint = "; tabs are not allowed for indentation" if "\\t" in str(problem) else ""
-        raise ConfigError(f"{where}: {problem} (YAML syntax{hint})") from None
-    if data is None:
-        return {}
-    if not isinstance(data, dict):
-        raise ConfigError(f"{path}: a configuration file must be a mapping of keys, not "
-                          f"{type(data).__name__}")
-    return data
-
-
 def typed_overrides(overrides: dict) -> dict:
     """``--config`` overrides with the values inside nested keys read as YAML.
 
     Snakemake reads ``--config paper_c='{den_hartog: {d: 0.09}}'`` with YAML's base loader,
     which leaves every nested value a string ("0.09"); each such string is read again here as
-    a YAML value (as in a configuration file: ``0.09`` and ``1e-9`` are numbers, ``printed``
-    stays a string). Top-level values, which Snakemake already types, are kept."""
+    a value of a configuration file would be (:func:`rotorvib.io.strict_yaml.load_value`:
+    ``0.09`` and ``1e-9`` are numbers, ``printed`` stays a string). Top-level values, which
+    Snakemake already types, are kept.  Only ``--config`` values come here: a configuration
+    file is read once, by :func:`load_yaml`."""
 
     def typed(value):
         if isinstance(value, dict):
@@ -122,13 +61,25 @@ def typed_overrides(overrides: dict) -> dict:
             return [typed(item) for item in value]
         if isinstance(value, str):
             try:
-                return yaml.load(value, Loader=_StrictLoader)
+                return load_value(value)
             except yaml.YAMLError:
                 return value
         return value
 
     return {key: typed(value) if isinstance(value, (dict, list)) else value
             for key, value in overrides.items()}
+
+
+def workflow_config(base_files, files, overrides: dict, *, replace_base: bool = False) -> dict:
+    """The configuration of a ``snakemake`` command, read here rather than taken from
+    Snakemake's own reading (YAML 1.1, templates evaluated): the workflow's ``configfile``
+    ``base_files`` (unless ``replace_base``, Snakemake's ``--replace-workflow-config``), then
+    each ``--configfile`` of ``files`` in order, then the ``--config`` ``overrides``, merged
+    key by key as Snakemake merges them."""
+    config: dict = {}
+    for path in ([] if replace_base else list(base_files)) + list(files):
+        config = merge(config, load_yaml(path))
+    return merge(config, typed_overrides(overrides))
 
 
 def _fill_defaults(instance: Any, schema: dict) -> None:
