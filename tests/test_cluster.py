@@ -22,7 +22,7 @@ CLUSTER = ROOT / "workflow/cluster/one-node-slurm"
 def slurm_cluster(tmp_path_factory):
     """A one-node SLURM cluster without accounting (workflow/cluster/one-node-slurm), stopped
     afterwards; the test skips, with the script's reason, only where SLURM cannot be set up."""
-    where = tmp_path_factory.mktemp("slurm")
+    where = tmp_path_factory.mktemp("slurm") / "cluster"     # start makes it itself
     start = subprocess.run([str(CLUSTER), "start", str(where)], capture_output=True, text=True,
                            timeout=600)
     if start.returncode == 77:
