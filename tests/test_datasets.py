@@ -8,7 +8,7 @@ import xarray as xr
 
 from conftest import cf_check
 from rotorvib.io.config import config_hash
-from rotorvib.io.config import INPUTS_CONFIG_PARAM, job_config
+from rotorvib.io.config import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 
 
@@ -87,13 +87,79 @@ def test_a_truncated_dataset_says_how_to_rebuild_it(tmp_path):
 
 
 def test_a_dataset_from_another_configuration_is_refused(tmp_path):
-    """The reader passes the hash of the configuration it expects the producer to have used;
-    the hash is that of the producer's parameters less the input check (job_config)."""
-    made = {"grid": [0.7, 1.3], INPUTS_CONFIG_PARAM: {"x.nc": "ignored"}}
+    """The reader passes the rule it expects to have made the file and the hash of that rule's
+    configuration; the hash is that of the producer's parameters less the input check
+    (job_config)."""
+    made = {"grid": [0.7, 1.3], INPUT_PRODUCERS_PARAM: {"x.nc": "ignored"}}
     path = write_dataset(_dataset(), tmp_path / "a.nc", Provenance("c_mass_ratio", job_config(made)))
-    same = config_hash({"grid": [0.7, 1.3]})
+    same = {"rule": "c_mass_ratio", "config_sha256": config_hash({"grid": [0.7, 1.3]})}
     assert read_dataset(path, {str(path): same}).D.size == 11
-    assert read_dataset(path, {"other.nc": "0" * 64}).D.size == 11    # not an input checked
+    assert read_dataset(path, {"other.nc": {"rule": "x"}}).D.size == 11   # not an input checked
     with pytest.raises(DatasetError, match=r"made by rule 'c_mass_ratio' under another "
                                            r"configuration.*snakemake --forcerun c_mass_ratio"):
-        read_dataset(path, {str(path): config_hash({"grid": [0.7, 1.4]})})
+        read_dataset(path, {str(path): {**same, "config_sha256": config_hash({"grid": [0.7]})}})
+
+
+def test_a_copied_in_dataset_names_the_rule_that_makes_its_path(tmp_path):
+    path = write_dataset(_dataset(), tmp_path / "a.nc", Provenance("c_mass_ratio", {}))
+    with pytest.raises(DatasetError, match=r"made by rule 'c_mass_ratio', but rule 'c_ga' makes "
+                                           r"this file \(copied in\?\); rebuild it: "
+                                           r"snakemake --forcerun c_ga"):
+        read_dataset(path, {str(path): {"rule": "c_ga", "config_sha256": config_hash({})}})
+
+
+def _two_variables():
+    ds = _dataset()
+    ds["E"] = ("w", np.linspace(5.0, 9.0, 11), {"long_name": "other", "units": "1"})
+    return ds
+
+
+def _swap(nc):
+    d, e = nc["D"][:], nc["E"][:]
+    nc["D"][:], nc["E"][:] = e, d
+
+
+def _rename_swap(nc):
+    nc.renameVariable("D", "tmp")
+    nc.renameVariable("E", "D")
+    nc.renameVariable("tmp", "E")
+
+
+def _nan_without_checksum(nc):
+    nc["D"].delncattr("sha256")
+    nc["D"][3] = np.nan
+
+
+#: Every kind of damage the reader catches: (edit of the open file, what the message says)
+DAMAGE = [
+    (lambda nc: nc["D"].__setitem__(5, np.nan), "variable 'D' is not what rule 'b_ga' wrote"),
+    (_swap, "variable 'D' is not what rule 'b_ga' wrote"),
+    (_rename_swap, "variable '[DE]' is not what rule 'b_ga' wrote"),
+    (lambda nc: nc["w"].__setitem__(3, 0.9899), "variable 'w' is not what"),
+    (lambda nc: nc["D"].setncattr("units", "m"), "variable 'D' is not what"),
+    (lambda nc: nc["w"].setncattr("long_name", "edited"), "variable 'w' is not what"),
+    (lambda nc: nc.setncattr("provenance_config", '{"x": 2}'),
+     r"a.nc is not what rule 'b_ga' wrote \(its variables or global attributes changed"),
+    (lambda nc: nc.setncattr("title", "edited"), "its variables or global attributes changed"),
+    (_nan_without_checksum, "variable 'D' has no checksum"),
+    (lambda nc: nc.delncattr("content_sha256"), r"a.nc has no checksum \(content_sha256\)"),
+    (lambda nc: nc.createVariable("extra", "f8", ("w",)).setncattr("sha256", "0" * 64),
+     "variable 'extra' is not what"),
+]
+
+
+@pytest.mark.parametrize("damage, said", DAMAGE)
+def test_every_kind_of_damage_is_named_with_the_rule_to_rerun(tmp_path, damage, said):
+    path = write_dataset(_two_variables(), tmp_path / "a.nc", Provenance("b_ga", {}))
+    read_dataset(path)
+    with netCDF4.Dataset(path, "r+") as nc:
+        damage(nc)
+    with pytest.raises(DatasetError, match=said + ".*snakemake --forcerun b_ga"):
+        read_dataset(path)
+
+
+def test_a_file_not_written_by_the_pipeline_is_refused(tmp_path):
+    path = tmp_path / "plain.nc"
+    _dataset().to_netcdf(path)
+    with pytest.raises(DatasetError, match="has no checksum"):
+        read_dataset(path)

@@ -189,11 +189,14 @@ def test_malformed_config_stops_before_any_job(run_dir, tmp_path):
 
 def _figure_job_error(work: Path, *args) -> str:
     """Force the job drawing paper C's Fig 6 (from the mass-ratio dataset) alone; return its log
-    (it must fail)."""
+    (it must fail), which the console shows too (the default profile's show-failed-logs)."""
     run = snakemake(work, "-j1", "-f", "results/paper_c/figures/fig6.png", *REDUCED, *args,
                     check=False)
     assert run.returncode != 0, run.stdout
-    return (work / "results/logs/figures_c_mass_ratio.log").read_text()
+    log = (work / "results/logs/figures_c_mass_ratio.log").read_text()
+    error = next(line for line in log.splitlines() if "DatasetError" in line)
+    assert error in run.stdout + run.stderr
+    return log
 
 
 def test_a_nan_poisoned_dataset_stops_the_downstream_rule(run_dir, tmp_path):
@@ -208,6 +211,18 @@ def test_a_nan_poisoned_dataset_stops_the_downstream_rule(run_dir, tmp_path):
             "'c_mass_ratio' wrote") in log
     assert "snakemake --forcerun c_mass_ratio" in log
     assert not (work / "results/paper_c/figures/fig6.png").exists()
+
+
+def test_a_copied_in_dataset_names_the_rule_that_makes_its_path(run_dir, tmp_path):
+    """A valid dataset of another rule copied over the mass-ratio dataset (and so newer than
+    its inputs) is refused, naming the rule that makes that path."""
+    work = copy_run(run_dir, tmp_path / "work")
+    datasets = work / "results/paper_c/datasets"
+    (datasets / "mass_ratio.nc").write_bytes((datasets / "distance.nc").read_bytes())
+    log = _figure_job_error(work)
+    assert ("results/paper_c/datasets/mass_ratio.nc was made by rule 'c_distance', but rule "
+            "'c_mass_ratio' makes this file (copied in?); rebuild it: snakemake --forcerun "
+            "c_mass_ratio") in log
 
 
 def test_a_dataset_made_under_another_configuration_is_refused(run_dir, tmp_path):

@@ -7,7 +7,7 @@ from types import SimpleNamespace
 from snakemake.exceptions import WorkflowError
 
 from rotorvib.io.config import (
-    INPUTS_CONFIG_PARAM,
+    INPUT_PRODUCERS_PARAM,
     ConfigError,
     config_hash,
     job_config,
@@ -259,32 +259,35 @@ def add_code_fingerprints(rules):
             each.set_params(code=code_fingerprint(script, *([named] if named else [])))
 
 
-def producer_config_hash(path):
-    """SHA-256 of the configuration the rule that makes ``path`` records in it (its parameters
-    for that file's wildcards, rotorvib.io.datasets.job_config)."""
+def producer_of(path):
+    """The rule that makes ``path`` in this run and the SHA-256 of the configuration it records
+    in it (its parameters for that file's wildcards, rotorvib.io.datasets.job_config).
+    """
     producer = next(each for each in workflow.rules if each.is_producer(path))
     wildcards = SimpleNamespace(**producer.get_wildcards(path))
-    return config_hash(
-        {
-            name: value(wildcards) if callable(value) else value
-            for name, value in job_config(producer.params).items()
-        }
-    )
-
-
-def inputs_config_hashes(wildcards, input):
-    """Each input dataset's expected producer-configuration hash, checked on read: a dataset
-    made under another configuration (copied, restored, ``--touch``ed) stops the job."""
     return {
-        path: producer_config_hash(path) for path in input if str(path).endswith(".nc")
+        "rule": producer.name,
+        "config_sha256": config_hash(
+            {
+                name: value(wildcards) if callable(value) else value
+                for name, value in job_config(producer.params).items()
+            }
+        ),
     }
 
 
+def input_producers(wildcards, input):
+    """Each input dataset's producer and its configuration hash, checked on read: a dataset
+    made by another rule or under another configuration (copied, restored, ``--touch``ed)
+    stops the job."""
+    return {path: producer_of(path) for path in input if str(path).endswith(".nc")}
+
+
 def add_input_checks(rules):
-    """Give every script rule the parameter rotorvib.io.config.INPUTS_CONFIG_PARAM."""
+    """Give every script rule the parameter rotorvib.io.config.INPUT_PRODUCERS_PARAM."""
     for each in rules:
         if each.script:
-            each.set_params(**{INPUTS_CONFIG_PARAM: inputs_config_hashes})
+            each.set_params(**{INPUT_PRODUCERS_PARAM: input_producers})
 
 
 def configuration_files():

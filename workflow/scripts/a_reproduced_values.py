@@ -7,8 +7,8 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.a.claims import reproduce
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
-data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
+data = {name: read_dataset(path, producers) for name, path in snakemake.input.items()
         if name != "paper_values"}
 p = snakemake.params
 rows = reproduce(**data, case_beta=p.case["beta"], window=p.zoom[1] - p.zoom[0],

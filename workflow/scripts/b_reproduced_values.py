@@ -9,9 +9,9 @@ from rotorvib.papers.b.pareto import pareto_rows
 from rotorvib.papers.b.uncertainty import uncertainty_rows
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
 p = snakemake.params
-data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
+data = {name: read_dataset(path, producers) for name, path in snakemake.input.items()
         if name != "paper_values"}
 pareto = data.pop("pareto")
 uncertainty = {name.removeprefix("uncertainty_"): data.pop(name)

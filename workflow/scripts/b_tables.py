@@ -9,8 +9,8 @@ from rotorvib.io.tables import write_table
 from rotorvib.papers.b.claims import kinematics_note, table1_rows, table2_rows
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
-data = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()}
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
+data = {name: read_dataset(path, producers) for name, path in snakemake.input.items()}
 kin = str(data["table1"].kinematics_name.values[0])
 write_table(table1_rows(data["table1"], kin), snakemake.output.table1, snakemake.output.table1_md,
             title=f"Paper B, Table 1: optimum ball mass against operating speed ({kin} kinematics)")

@@ -13,7 +13,7 @@ from rotorvib.models.absorber.time_response import response_times
 from rotorvib.papers.c.broadband import broadband_dataset, broadband_front
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
 p = snakemake.params
 rotor = Rotor(**p.rotor)
 b, fr, time = p.broadband, p.grid, p.time
@@ -22,7 +22,7 @@ front = broadband_front(rotor, p.bounds, band_w, **b["nsga"])
 print(f"NSGA-II: {len(front.f)} designs on the front, {front.n_eval} evaluations",
       file=sys.stderr)
 t = response_times(rotor.omega_n, time["t_end"], time["samples_per_period"])
-ga = read_dataset(snakemake.input.ga, expected_config)
+ga = read_dataset(snakemake.input.ga, producers)
 ds = broadband_dataset(rotor, dual_absorber(**p.table2), ga.x_opt.values, b["den_hartog_d"],
                        front, band_w, np.linspace(fr["w_min"], fr["w_max"], fr["n_points"]), t,
                        k_min=p.bounds["k"][0])

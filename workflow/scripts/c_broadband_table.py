@@ -7,7 +7,7 @@ from rotorvib.io.tables import write_table
 from rotorvib.papers.c.broadband import comparison_table
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
-rows = comparison_table(read_dataset(snakemake.input.bb, expected_config))
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
+rows = comparison_table(read_dataset(snakemake.input.bb, producers))
 write_table(rows, snakemake.output.csv, snakemake.output.md,
             title="Paper C, beyond the paper: the broadband absorber beside the other designs")

@@ -10,9 +10,9 @@ from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import frequency_response_dataset
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
 p = snakemake.params
 w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])
-x_opt = read_dataset(snakemake.input.ga, expected_config).x_opt.values
+x_opt = read_dataset(snakemake.input.ga, producers).x_opt.values
 ds = frequency_response_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), x_opt, w)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

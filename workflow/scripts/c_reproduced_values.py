@@ -10,13 +10,13 @@ from rotorvib.papers.c.claims import reproduce
 from rotorvib.papers.c.uncertainty import uncertainty_rows
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
 p = snakemake.params
 rotor = Rotor(**p.rotor)
-data = {name: read_dataset(snakemake.input[name], expected_config) for name in ("ga", "fr", "mr", "distance", "tr")}
+data = {name: read_dataset(snakemake.input[name], producers) for name in ("ga", "fr", "mr", "distance", "tr")}
 paper = paper_values_of(snakemake.input.paper_values, "C")
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
                  paper_values=paper)
-rows += broadband_rows(read_dataset(snakemake.input.bb, expected_config))
-rows += uncertainty_rows(read_dataset(snakemake.input.uncertainty, expected_config), paper)
+rows += broadband_rows(read_dataset(snakemake.input.bb, producers))
+rows += uncertainty_rows(read_dataset(snakemake.input.uncertainty, producers), paper)
 write_reproduced(rows, snakemake.output[0])

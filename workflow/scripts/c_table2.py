@@ -7,7 +7,7 @@ from rotorvib.io.tables import write_table
 from rotorvib.papers.c.claims import table2_side_by_side
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
-rows = table2_side_by_side(read_dataset(snakemake.input.ga, expected_config))
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
+rows = table2_side_by_side(read_dataset(snakemake.input.ga, producers))
 write_table(rows, snakemake.output.csv, snakemake.output.md,
             title="Table 2 of paper C beside the genetic-algorithm optimum")

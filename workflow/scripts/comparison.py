@@ -9,14 +9,14 @@ from rotorvib.comparison import (build_table, read_paper_values, read_reproduced
 from rotorvib.io.datasets import read_dataset
 
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
 reproduced = [row for path in snakemake.input.reproduced for row in read_reproduced(path)]
 papers = {row.paper for row in reproduced}
 values = [row for row in read_paper_values(snakemake.input.paper_values) if row["paper"] in papers]
 table = build_table(values, reproduced)
 analyses = discrepancy.analyse(
     table, values, reproduced,
-    [discrepancy.from_dataset(read_dataset(path, expected_config)) for path in snakemake.input.discrepancies])
+    [discrepancy.from_dataset(read_dataset(path, producers)) for path in snakemake.input.discrepancies])
 discrepancy.write_files(analyses, snakemake.output.discrepancies_csv,
                         snakemake.output.discrepancies_md)
 write_table_files(discrepancy.annotate(table, analyses), snakemake.output.csv,

@@ -15,9 +15,9 @@ from rotorvib.io.plotting import drawn_key, parameters_text, save
 
 module = importlib.import_module(snakemake.params.module)  # the figures' own imports too
 job.start(snakemake.log[0])
-expected_config = snakemake.params.inputs_config_sha256  # each input's producer config
+producers = snakemake.params.input_producers  # each input dataset's rule and configuration
 p = snakemake.params
-read = {name: read_dataset(path, expected_config) for name, path in snakemake.input.items()
+read = {name: read_dataset(path, producers) for name, path in snakemake.input.items()
         if name != "paper_values"}
 paper = paper_values_of(snakemake.input.paper_values, p.paper.upper())
 for name, declared in p.figures.items():

@@ -33,15 +33,16 @@ if TYPE_CHECKING:
     import jsonschema
 
 
-#: The parameter through which the workflow gives a job the configuration hash of each input
-#: dataset's producer (checked by :func:`rotorvib.io.datasets.read_dataset`).
-INPUTS_CONFIG_PARAM = "inputs_config_sha256"
+#: The parameter through which the workflow gives a job the rule that makes each input dataset
+#: and the hash of that rule's configuration (checked by
+#: :func:`rotorvib.io.datasets.read_dataset`).
+INPUT_PRODUCERS_PARAM = "input_producers"
 
 
 def job_config(params) -> dict:
     """The configuration a job records in its datasets: its rule's parameters (a mapping, e.g.
-    ``snakemake.params``) without the input check :data:`INPUTS_CONFIG_PARAM` itself."""
-    return {k: v for k, v in params.items() if k != INPUTS_CONFIG_PARAM}
+    ``snakemake.params``) without the input check :data:`INPUT_PRODUCERS_PARAM` itself."""
+    return {k: v for k, v in params.items() if k != INPUT_PRODUCERS_PARAM}
 
 
 def typed_overrides(overrides: dict) -> dict:

@@ -4,18 +4,22 @@ Each file carries CF-1.11 and ACDD-1.3 global attributes, ``long_name`` and ``un
 variable and coordinate, and its provenance (git commit and dirty flag, hash and canonical text
 of the configuration, package versions, rule, seed).  Files are deterministic: the same data and
 provenance give byte-identical files (no wall-clock time is written; the date, if any, comes from
-``SOURCE_DATE_EPOCH``).  Every numeric data variable carries the SHA-256 of its values
-(``sha256``), and :func:`read_dataset` checks it: a dataset damaged or edited after its rule
-wrote it (say, a variable overwritten with NaN) stops the reading job with an error that names
-the file, the variable and the rule to rerun.  Given the hash of the configuration the reading job
-expects its producer to have used (the workflow passes it as the parameter
-:data:`rotorvib.io.config.INPUTS_CONFIG_PARAM`), it also refuses a dataset made under another
-configuration (copied in, restored from another run, or marked current with ``--touch``).
+``SOURCE_DATE_EPOCH``).  Every variable and coordinate carries the SHA-256 of its name,
+dimensions, type, values and attributes (``sha256``) and the file the SHA-256 of all of them and
+of its global attributes (``content_sha256``); :func:`read_dataset` checks both, and a missing
+checksum is itself an error: a dataset damaged or edited after its rule wrote it (a variable
+overwritten with NaN, two variables swapped, a coordinate, a unit or the provenance edited)
+stops the reading job with an error that names the file, what changed and the rule to rerun.
+Given the rule that makes the file in this run and the hash of the configuration it uses (the
+workflow passes both as the parameter :data:`rotorvib.io.config.INPUT_PRODUCERS_PARAM`), it also
+refuses a dataset made by another rule or under another configuration (copied in, restored from
+another run, or marked current with ``--touch``).
 """
 
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
@@ -69,32 +73,92 @@ class DatasetError(ValueError):
     """A dataset cannot be read, or is not what its rule wrote."""
 
 
-def values_sha256(values) -> str:
-    """SHA-256 of an array's values (C order, native dtype)."""
-    return hashlib.sha256(np.ascontiguousarray(values).tobytes()).hexdigest()
+#: The global attribute holding the checksum of a whole dataset (:func:`content_sha256`).
+CHECKSUM = "content_sha256"
 
 
-def read_dataset(path: str | Path, expected_config: dict[str, str] | None = None) -> xr.Dataset:
-    """Load a dataset written by :func:`write_dataset` into memory, checking that it opens, that
-    every numeric data variable still has the values its rule wrote and, where
-    ``expected_config[str(path)]`` is given, that its ``provenance_config_sha256`` is that hash."""
+def _plain(value):
+    """An attribute value as JSON can hold it, the same before writing and after reading
+    (netCDF turns tuples and scalars into arrays)."""
+    if isinstance(value, (np.ndarray, np.generic, list, tuple)):
+        value = np.asarray(value).tolist()
+        return [_plain(v) for v in value] if isinstance(value, list) else value
+    return value
+
+
+def _attrs_text(attrs: dict) -> str:
+    return json.dumps({k: _plain(v) for k, v in attrs.items() if k != "sha256"},
+                      sort_keys=True, ensure_ascii=True)
+
+
+def variable_sha256(name: str, var: xr.Variable) -> str:
+    """SHA-256 of one variable or coordinate: its name, dimensions, shape, type, values and
+    attributes (but its own ``sha256``). Text arrays hash their UTF-8 text (they come back as
+    objects from netCDF)."""
+    h = hashlib.sha256()
+    values = np.asarray(var.values)
+    text = values.dtype.kind in "OUS"
+    h.update(json.dumps([name, list(var.dims), list(values.shape),
+                         "text" if text else values.dtype.str]).encode())
+    if text:
+        h.update("\0".join(str(v) for v in values.ravel()).encode())
+    else:
+        h.update(np.ascontiguousarray(values).tobytes())
+    h.update(_attrs_text(var.attrs).encode())
+    return h.hexdigest()
+
+
+def content_sha256(ds: xr.Dataset) -> str:
+    """SHA-256 of a whole dataset: its global attributes (but :data:`CHECKSUM`) and the name
+    and checksum of every variable and coordinate."""
+    h = hashlib.sha256(_attrs_text({k: v for k, v in ds.attrs.items() if k != CHECKSUM})
+                       .encode())
+    for name in sorted(ds.variables):
+        h.update(f"{name}:{variable_sha256(name, ds.variables[name])};".encode())
+    return h.hexdigest()
+
+
+def _rerun(rule: str) -> str:
+    return f"rebuild it: snakemake --forcerun {rule}"
+
+
+def read_dataset(path: str | Path, expected: dict[str, dict] | None = None) -> xr.Dataset:
+    """Load a dataset written by :func:`write_dataset` into memory, checking every byte of it:
+    that it opens, that every variable and coordinate (values, dimensions, type, attributes)
+    has its ``sha256`` and the whole its :data:`CHECKSUM` (global attributes included), as
+    written.  Where ``expected[str(path)]`` is given (``{"rule", "config_sha256"}``: the rule
+    that makes this path in this run and the hash of its configuration), the dataset must have
+    been made by that rule under that configuration (a copied-in, restored or ``--touch``-ed
+    file is not), and the messages name that rule to rerun."""
+    want = (expected or {}).get(str(path), {})
     try:
         ds = xr.load_dataset(path)
     except (OSError, ValueError, RuntimeError) as error:
         raise DatasetError(f"{path} cannot be read ({error}); delete it and rerun snakemake to "
                            "rebuild it") from None
-    rule = ds.attrs.get("provenance_rule", "?")
-    for name, var in ds.data_vars.items():
-        expected = var.attrs.get("sha256")
-        if expected is not None and values_sha256(var.values) != expected:
-            raise DatasetError(f"{path}: variable {name!r} is not what rule {rule!r} wrote (its "
-                               f"values changed since); rerun it: snakemake --forcerun {rule}")
-    want = (expected_config or {}).get(str(path))
+    made_by = ds.attrs.get("provenance_rule", "?")
+    rerun = _rerun(want.get("rule", made_by))
+    for name, var in ds.variables.items():
+        if "sha256" not in var.attrs:
+            raise DatasetError(f"{path}: variable {name!r} has no checksum (sha256): it was "
+                               f"not written by the pipeline, or was edited; {rerun}")
+        if variable_sha256(name, var) != var.attrs["sha256"]:
+            raise DatasetError(f"{path}: variable {name!r} is not what rule {made_by!r} wrote "
+                               f"(its values, dimensions or attributes changed since); {rerun}")
+    if CHECKSUM not in ds.attrs:
+        raise DatasetError(f"{path} has no checksum ({CHECKSUM}): it was not written by the "
+                           f"pipeline, or was edited; {rerun}")
+    if content_sha256(ds) != ds.attrs[CHECKSUM]:
+        raise DatasetError(f"{path} is not what rule {made_by!r} wrote (its variables or global "
+                           f"attributes changed since); {rerun}")
+    if want.get("rule") not in (None, made_by):
+        raise DatasetError(f"{path} was made by rule {made_by!r}, but rule {want['rule']!r} "
+                           f"makes this file (copied in?); {rerun}")
     got = ds.attrs.get("provenance_config_sha256")
-    if want is not None and got != want:
-        raise DatasetError(f"{path} was made by rule {rule!r} under another configuration "
-                           f"(config sha256 {str(got)[:12]}…, this run expects {want[:12]}…); "
-                           f"rerun it: snakemake --forcerun {rule}")
+    if want.get("config_sha256") not in (None, got):
+        raise DatasetError(f"{path} was made by rule {made_by!r} under another configuration "
+                           f"(config sha256 {str(got)[:12]}…, this run expects "
+                           f"{want['config_sha256'][:12]}…); {rerun}")
     return ds
 
 
@@ -129,9 +193,9 @@ def write_dataset(ds: xr.Dataset, path: str | Path, provenance: Provenance) -> P
         **ds.attrs,
         **provenance.attrs(),
     }
-    for var in out.data_vars.values():
-        if var.dtype.kind in "fiuc":
-            var.attrs["sha256"] = values_sha256(var.values)
+    for name, var in out.variables.items():
+        var.attrs["sha256"] = variable_sha256(name, var)
+    out.attrs[CHECKSUM] = content_sha256(out)
     encoding = {}
     for name, var in out.variables.items():
         if name in out.coords or var.dtype.kind not in "fiuc":
