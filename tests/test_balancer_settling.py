@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import rotorvib.models.balancer.simulate as runner
-from rotorvib.methods.numba_cache import LOCK, STAMP, compile_lock, drop_if_stale
+from rotorvib.methods.numba_cache import LOCK, MANIFEST, compile_lock, drop_if_stale
 from rotorvib.models.balancer import engine, settling
 from rotorvib.models.balancer.certificates import balanced_jacobian, certificates
 from rotorvib.models.balancer.kinematics import disk_kinematics
@@ -134,7 +134,7 @@ def test_a_stale_numba_cache_is_emptied(tmp_path):
     assert not drop_if_stale(tmp_path) and all(f.exists() for f in files)   # same sources
     (tmp_path / "a.py").write_text("x = 2\n")                               # one module edited
     assert drop_if_stale(tmp_path) and not any(f.exists() for f in files)
-    assert (cache / STAMP).read_text() != ""
+    assert (cache / MANIFEST).read_text() != ""
 
 
 def test_the_compile_lock_is_exclusive_between_processes_and_released_after(tmp_path):

@@ -1,12 +1,20 @@
-"""Cache files beside the package's modules, written whole or not at all.
+"""Cache files beside the package's modules, written whole or not at all, and read only when
+they are what the package wrote.
 
 The package keeps derived data in its ``__pycache__`` folders (generated numeric functions,
-numba's stamp, code-fingerprint memos); parallel workflow jobs may write the same file at once.
+numba's manifest, code-fingerprint memos); parallel workflow jobs may write the same file at
+once, and a file may be damaged (a full disk, an interrupted copy, an edit).  A checked file
+begins with the SHA-256 of the rest: :func:`read_checked` gives back what
+:func:`write_checked` wrote, or nothing, with a one-line warning, for a file that does not
+match (the caller then rebuilds it).  The checksum detects damage; it is no signature: whoever
+can write the package's folders can also change its code.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
+import sys
 import tempfile
 from pathlib import Path
 
@@ -25,3 +33,43 @@ def write_atomic(path: str | Path, text: str) -> bool:
     except OSError:
         return False
     return True
+
+
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def write_checked(path: str | Path, text: str) -> bool:
+    """:func:`write_atomic` of ``text`` preceded by a line holding its SHA-256."""
+    return write_atomic(path, f"{_digest(text)}\n{text}")
+
+
+def warn_damaged(path: str | Path, what: str = "") -> None:
+    """The one-line warning of a damaged cache file that is ignored and rebuilt."""
+    print(f"rotorvib: damaged cache file {path}{what} ignored; it is rebuilt", file=sys.stderr)
+
+
+def discard(path: str | Path) -> None:
+    try:
+        Path(path).unlink(missing_ok=True)
+    except OSError:
+        pass
+
+
+def read_checked(path: str | Path) -> str | None:
+    """The text :func:`write_checked` wrote to ``path``; None where there is no such file, and
+    None with a warning (the file deleted) where it cannot be read as UTF-8 or its checksum does
+    not match."""
+    try:
+        raw = Path(path).read_bytes()
+    except OSError:
+        return None
+    try:
+        digest, _, text = raw.decode("utf-8").partition("\n")
+    except UnicodeDecodeError:
+        digest, text = "", ""
+    if digest != _digest(text):
+        warn_damaged(path)
+        discard(path)
+        return None
+    return text

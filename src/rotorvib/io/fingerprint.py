@@ -26,7 +26,7 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-from rotorvib.io.cache_files import write_atomic
+from rotorvib.io.cache_files import read_checked, warn_damaged, write_checked
 
 PACKAGE = "rotorvib"
 #: The memo's folder, and what its entries depend on besides a module's text.
@@ -34,16 +34,31 @@ MEMO = Path(__file__).parent / "__pycache__" / "fingerprints"
 _MEMO_VERSION = hashlib.sha256(Path(__file__).read_bytes() + sys.version.encode()).hexdigest()
 
 
-def _memo(kind: str, text: str, compute):
-    """``compute()`` (a JSON value) for ``text``, from the memo when an entry exists."""
+def _names(value) -> bool:
+    return isinstance(value, list) and all(isinstance(v, str) for v in value)
+
+
+def _hex_digest(value) -> bool:
+    return isinstance(value, str) and len(value) == 64 and set(value) <= set("0123456789abcdef")
+
+
+def _memo(kind: str, text: str, compute, valid):
+    """``compute()`` (a JSON value for which ``valid`` holds) for ``text``, from the memo when
+    an intact, valid entry exists (a damaged one is rebuilt, :mod:`cache_files`)."""
     key = hashlib.sha256("\0".join((_MEMO_VERSION, kind, text)).encode()).hexdigest()
     path = MEMO / f"{key[:32]}.json"
-    try:
-        return json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        value = compute()
-        write_atomic(path, json.dumps(value))
-        return value
+    stored = read_checked(path)
+    if stored is not None:
+        try:
+            value = json.loads(stored)
+        except ValueError:
+            value = None
+        if valid(value):
+            return value
+        warn_damaged(path, f" (not a {kind} entry)")
+    value = compute()
+    write_checked(path, json.dumps(value))
+    return value
 
 
 def module_file(name: str, root: Path) -> Path | None:
@@ -77,7 +92,8 @@ def imported_names(source: str, importer: str | None = None,
     source text, in the process and on disk.
     """
     return frozenset(_memo(f"imports {importer} {is_package}", source,
-                           lambda: sorted(_imported_names(source, importer, is_package))))
+                           lambda: sorted(_imported_names(source, importer, is_package)),
+                           _names))
 
 
 def _imported_names(source: str, importer: str | None, is_package: bool) -> set[str]:
@@ -140,7 +156,8 @@ def normalised_source(source: str) -> str:
 def behaviour_digest(source: str) -> str:
     """SHA-256 of :func:`normalised_source` (memoised on the text, in the process and on disk)."""
     return _memo("behaviour", source,
-                 lambda: hashlib.sha256(normalised_source(source).encode()).hexdigest())
+                 lambda: hashlib.sha256(normalised_source(source).encode()).hexdigest(),
+                 _hex_digest)
 
 
 @lru_cache(maxsize=None)

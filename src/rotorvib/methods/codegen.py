@@ -8,8 +8,10 @@ compiled code, and later processes execute that source instead of deriving again
 
 The cache key is a SHA-256 of the function's name and arguments, sympy's version and the source
 of every module whose code defines the expressions: editing any of them, or another sympy,
-derives afresh.  A cache that cannot be written (read-only install) or read (damaged file) is
-ignored: the expressions are then derived as without it.
+derives afresh.  A cache file is executed only when its checksum matches the source this
+module wrote (:mod:`rotorvib.io.cache_files`); a cache that cannot be written (read-only
+install), is damaged or fails to run is ignored (with a one-line warning) and the expressions
+are derived as without it.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from typing import Callable
 
 import sympy as sp
 
-from rotorvib.io.cache_files import write_atomic
+from rotorvib.io.cache_files import discard, read_checked, warn_damaged, write_checked
 
 
 def _key(name: str, args, modules: tuple[ModuleType, ...]) -> str:
@@ -38,12 +40,19 @@ def _numpy_namespace() -> dict:
 
 
 def _load(path: Path) -> Callable | None:
+    """The function cached at ``path``, or None (a damaged file, one whose checksum does not
+    match what :func:`cached_lambdify` wrote, or one that fails to run, is ignored and
+    rebuilt, with a one-line warning)."""
+    source = read_checked(path)
+    if source is None:
+        return None
     try:
-        source = path.read_text()
         namespace = _numpy_namespace()
         exec(compile(source, str(path), "exec"), namespace)
         return namespace["_lambdifygenerated"]
-    except (OSError, SyntaxError, KeyError, NameError):
+    except Exception as error:  # whatever the file does: derive afresh
+        warn_damaged(path, f" ({type(error).__name__})")
+        discard(path)
         return None
 
 
@@ -52,9 +61,9 @@ def cached_lambdify(name: str, args, build: Callable[[], object], *,
     """``sympy.lambdify(args, build(), "numpy")``, from the disk cache when ``modules`` (the
     first one's folder holds the cache) and sympy are unchanged since it was generated."""
     path = (Path(modules[0].__file__).parent / "__pycache__"
-            / f"{name}.{_key(name, args, modules)}.lambdify.py")
-    if path.exists() and (f := _load(path)) is not None:
+            / f"{name}.{_key(name, args, modules)}.lambdify")
+    if (f := _load(path)) is not None:
         return f
     f = sp.lambdify(args, build(), "numpy")
-    write_atomic(path, inspect.getsource(f))      # parallel jobs never read half a file
+    write_checked(path, inspect.getsource(f))      # parallel jobs never read half a file
     return f

@@ -18,7 +18,7 @@ import numpy as np
 
 from rotorvib.checks import finite_array, number
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
-from rotorvib.methods.numba_cache import compile_lock
+from rotorvib.methods.numba_cache import compile_lock, record
 from rotorvib.models.balancer import analysers, dop853, engine, inputs, settling
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
@@ -41,12 +41,15 @@ _READY: set = set()
 def _first_use(integrator):
     """The first time this process runs ``integrator``, run the block under the package's
     compile lock (:func:`rotorvib.methods.numba_cache.compile_lock`): jobs that start together
-    on an empty cache compile it once, not once each."""
+    on an empty cache compile it once, not once each; then record the numba files in the
+    package's manifest, so that a later process finds a damaged one."""
     if integrator in _READY:
         yield
         return
-    with compile_lock(Path(__file__).parent):
+    package = Path(__file__).parent
+    with compile_lock(package):
         yield
+        record(package)              # the numba files now written or loaded, as they are
     _READY.add(integrator)
 
 

@@ -1,0 +1,175 @@
+"""Damaged caches heal: a numba, codegen or fingerprint cache file that is not what the package
+wrote is detected by its checksum, ignored with a one-line warning and rebuilt, never a crash
+or a changed result; a held compile lock is said, then refused, naming its file."""
+
+import fcntl
+import importlib.util
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import pytest
+import sympy as sp
+
+from conftest import ROOT
+from rotorvib.io import fingerprint
+from rotorvib.io.cache_files import read_checked, write_checked
+from rotorvib.methods import codegen, numba_cache
+from rotorvib.methods.numba_cache import MANIFEST, compile_lock, drop_if_stale, record
+
+# --- checked files -----------------------------------------------------------------------------
+
+DAMAGE = {   # kind -> a damaged version of a file's bytes
+    "truncated": lambda b: b[: len(b) // 2],
+    "garbage": lambda b: os.urandom(len(b)),
+    "empty": lambda b: b"",
+    "not UTF-8": lambda b: b"\xff\xfe" + b[2:],
+    "one byte edited": lambda b: b[:-2] + bytes([b[-2] ^ 1]) + b[-1:],
+}
+
+
+@pytest.mark.parametrize("kind", DAMAGE)
+def test_a_damaged_checked_file_reads_as_absent_with_a_warning(tmp_path, kind, capsys):
+    path = tmp_path / "entry.json"
+    write_checked(path, json.dumps(["rotorvib.io", "numpy"]))
+    assert read_checked(path) == '["rotorvib.io", "numpy"]'
+    path.write_bytes(DAMAGE[kind](path.read_bytes()))
+    assert read_checked(path) is None and not path.exists()
+    assert capsys.readouterr().err.count("damaged cache file") == 1
+
+
+# --- numba's files and the package's manifest ------------------------------------------------
+
+def _package(tmp_path):
+    (tmp_path / "a.py").write_text("x = 1\n")
+    cache = tmp_path / "__pycache__"
+    cache.mkdir()
+    drop_if_stale(tmp_path)
+    files = {name: cache / name for name in ("a.f-1.py311.nbi", "a.f-1.py311.1.nbc",
+                                             "a.g-9.py311.nbi", "a.g-9.py311.1.nbc")}
+    for path in files.values():
+        path.write_bytes(os.urandom(200))
+    record(tmp_path)
+    return cache, files
+
+
+@pytest.mark.parametrize("kind", DAMAGE)
+def test_a_damaged_numba_file_drops_its_function_only(tmp_path, kind, capsys):
+    cache, files = _package(tmp_path)
+    assert not drop_if_stale(tmp_path)                      # intact: kept
+    damaged = files["a.f-1.py311.1.nbc"]
+    damaged.write_bytes(DAMAGE[kind](damaged.read_bytes()))
+    assert drop_if_stale(tmp_path)
+    assert [p.name for p in sorted(cache.glob("*.nb?"))] == ["a.g-9.py311.1.nbc",
+                                                             "a.g-9.py311.nbi"]
+    assert "damaged cache file" in capsys.readouterr().err
+    assert not drop_if_stale(tmp_path)                      # healed: nothing more to do
+
+
+@pytest.mark.parametrize("kind", DAMAGE)
+def test_a_damaged_manifest_empties_the_cache_with_a_warning(tmp_path, kind, capsys):
+    cache, files = _package(tmp_path)
+    manifest = cache / MANIFEST
+    manifest.write_bytes(DAMAGE[kind](manifest.read_bytes()))
+    assert drop_if_stale(tmp_path) and not any(p.exists() for p in files.values())
+    assert "damaged cache file" in capsys.readouterr().err
+    assert json.loads(read_checked(manifest))["files"] == {}
+
+
+def test_a_manifest_of_the_wrong_shape_is_damaged(tmp_path, capsys):
+    cache, files = _package(tmp_path)
+    write_checked(cache / MANIFEST, json.dumps(["not", "a", "manifest"]))
+    assert drop_if_stale(tmp_path) and not any(p.exists() for p in files.values())
+    assert "damaged cache file" in capsys.readouterr().err
+
+
+def test_a_real_damaged_engine_file_is_recompiled_and_gives_the_same_answer(tmp_path):
+    """The balancer's compiled integrator with its index overwritten with garbage, in a copy of
+    the package whose cache holds the compiled engine: the next process warns once, compiles
+    that function again and gives the same peak force as before the damage."""
+    probe = ("from rotorvib.models.balancer.parameters import Balancer, SpeedProfile\n"
+             "from rotorvib.models.balancer.simulate import simulate\n"
+             "b = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012,"
+             " zeta=0.01, beta=2.0)\n"
+             "print(repr(simulate(b, SpeedProfile(200.0), [0.3, -0.4], 0.05).force_max))\n")
+    shutil.copytree(ROOT / "src", tmp_path / "src")
+
+    def run():
+        return subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                              env={**os.environ, "PYTHONPATH": str(tmp_path / "src")},
+                              timeout=600)
+
+    before = run()
+    assert before.returncode == 0, before.stderr
+    cache = tmp_path / "src/rotorvib/models/balancer/__pycache__"
+    index = next(cache.glob("engine.integrate-*.nbi"))
+    index.write_bytes(os.urandom(index.stat().st_size))
+    after = run()
+    assert after.returncode == 0, after.stderr
+    assert after.stdout == before.stdout
+    assert after.stderr.count("damaged cache file") == 1 and "engine.integrate" in after.stderr
+    assert run().stderr.count("damaged cache file") == 0
+
+
+# --- generated code and fingerprint memos ------------------------------------------------------
+
+def test_generated_code_runs_only_as_written(tmp_path, capsys):
+    """A cache file of generated code is executed only when its checksum matches: a planted or
+    edited file (here, one that would return 42) is regenerated, not run; a file that raises
+    is regenerated too."""
+    module = tmp_path / "expressions.py"
+    module.write_text("# the expressions' module\n")
+    spec = importlib.util.spec_from_file_location("expressions", module)
+    expressions = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(expressions)
+    x = sp.Symbol("x")
+
+    def square():
+        return codegen.cached_lambdify("square", (x,), lambda: x**2, modules=(expressions,))
+
+    assert square()(3.0) == 9.0
+    (path,) = (tmp_path / "__pycache__").glob("square.*.lambdify")
+    assert square()(3.0) == 9.0 and capsys.readouterr().err == ""      # from the cache
+    planted = "def _lambdifygenerated(x):\n    return 42\n"
+    for text in (planted, "raise SystemError('boom')\n", "\udcff",
+                 read_checked(path).replace("**2", "**3")):
+        path.write_text(text, errors="surrogateescape")
+        assert square()(3.0) == 9.0
+        assert "damaged cache file" in capsys.readouterr().err
+    # a file whose checksum matches but fails to run is regenerated too
+    write_checked(path, "raise SystemError('boom')\n")
+    assert square()(3.0) == 9.0
+    assert "damaged cache file" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("stored", ['{"a": 1}', "[1, 2]", '"not a digest"', "null"])
+def test_a_fingerprint_memo_of_the_wrong_type_is_rebuilt(tmp_path, monkeypatch, stored, capsys):
+    monkeypatch.setattr(fingerprint, "MEMO", tmp_path)
+    fingerprint.behaviour_digest.cache_clear()
+    digest = fingerprint.behaviour_digest("x = 1\n")
+    (entry,) = tmp_path.glob("*.json")
+    write_checked(entry, stored)
+    fingerprint.behaviour_digest.cache_clear()
+    assert fingerprint.behaviour_digest("x = 1\n") == digest
+    assert "damaged cache file" in capsys.readouterr().err
+
+
+# --- the compile lock ----------------------------------------------------------------------------
+
+def test_a_held_compile_lock_is_said_then_refused_naming_its_file(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(numba_cache, "LOCK_NOTICE", 0.2)
+    (tmp_path / "__pycache__").mkdir()
+    with open(tmp_path / "__pycache__" / numba_cache.LOCK, "a") as other:
+        fcntl.flock(other, fcntl.LOCK_EX)          # another process holds it
+        start = time.monotonic()
+        with pytest.raises(TimeoutError, match=r"compile lock .*numba-compile.lock has been "
+                                               r"held by another process for over 1 s"):
+            with compile_lock(tmp_path, timeout=1.0):
+                pass
+        assert 1.0 <= time.monotonic() - start < 5.0
+    assert "waiting for the compile lock" in capsys.readouterr().err
+    with compile_lock(tmp_path, timeout=1.0):      # released: taken at once
+        pass
