@@ -6,6 +6,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from rotorvib.comparison import verdict
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, simulate
 from rotorvib.papers.b.optimise import balance_time_objective, ga_dataset, tune_balancer
@@ -252,3 +253,17 @@ def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
     mean = run_case(setup, [[0.1, 0.01, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
     assert mean["balance_time"][0] == pytest.approx(
         np.mean([direct(p).balance_time for p in ics["ics"]]), rel=1e-12)
+
+
+def test_a_ga_that_never_balances_keeps_no_penalty_as_a_time(setup):
+    """With runs of 0.3 s (before any balance) every run is censored: the GA's optimum and
+    its history are NaN (the penalty 2 t_end is never stored as a time), flagged censored, and
+    the comparison calls such a number UNDETERMINED rather than comparing it."""
+    short = dataclasses.replace(setup, criterion=dataclasses.replace(setup.criterion,
+                                                                      t_end=0.3))
+    ds = ga_dataset(short, kinematics=["printed"], eps_bars=[0.012], ics={"IC1": IC1},
+                    beta_bounds=(0.1, 1.0), mass_bounds=(0.006, 0.02), pop_size=4, n_gen=2,
+                    seed=4, censored_penalty=2.0)
+    assert np.isnan(ds.balance_time_opt).all() and np.isnan(ds.best_balance_time).all()
+    assert (ds.censored == 1).all()
+    assert verdict(5.0, float(ds.balance_time_opt.squeeze())) == (None, "UNDETERMINED")

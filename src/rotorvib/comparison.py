@@ -12,7 +12,9 @@ reproduced values; this module joins the two and assigns a verdict:
 * a chosen or theoretical value: EXPECTED (within 1 %) or UNEXPECTED, counted apart;
 * a claim without a number: SUPPORTED, NOT SUPPORTED or DEPENDS from whether it holds under each
   variant it was evaluated under (kinematics, constructions); DEPENDS names the variants under
-  which it holds.  UNDETERMINED when no variant decides it.
+  which it holds.  UNDETERMINED when no variant decides it;
+* a number whose reproduction has no value (every run censored: NaN, never a penalty or a cap
+  passed off as a number) is UNDETERMINED too, with its relative error left empty.
 """
 
 from __future__ import annotations
@@ -29,9 +31,10 @@ COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reprod
 SOURCES = ("printed", "chosen", "theory")
 MATCH_TOL = 0.01
 MINOR_TOL = 0.10
-NUMERIC_VERDICTS = ("MATCH", "MINOR", "MAJOR", "PAPER-INCONSISTENT")
-EXPECTATION_VERDICTS = ("EXPECTED", "UNEXPECTED")
-CLAIM_VERDICTS = ("SUPPORTED", "NOT SUPPORTED", "DEPENDS", "UNDETERMINED")
+UNDETERMINED = "UNDETERMINED"
+NUMERIC_VERDICTS = ("MATCH", "MINOR", "MAJOR", "PAPER-INCONSISTENT", UNDETERMINED)
+EXPECTATION_VERDICTS = ("EXPECTED", "UNEXPECTED", UNDETERMINED)
+CLAIM_VERDICTS = ("SUPPORTED", "NOT SUPPORTED", "DEPENDS", UNDETERMINED)
 #: The three kinds of row and their verdicts, as the totals count them.
 VERDICT_GROUPS = (("printed numbers", NUMERIC_VERDICTS),
                   ("chosen or theoretical values", EXPECTATION_VERDICTS),
@@ -98,7 +101,7 @@ def verdict(paper_value: float | None, reproduced: float | None, *, source: str 
     if paper_value is None:
         return None, claim_verdict(holds)
     if reproduced is None or not math.isfinite(reproduced):
-        raise ValueError("a quantitative paper value needs a finite reproduced value")
+        return None, UNDETERMINED       # no number to compare (e.g. every run censored)
     rel = relative_error(paper_value, reproduced)
     if source != "printed":
         return rel, "EXPECTED" if rel <= MATCH_TOL else "UNEXPECTED"
@@ -243,14 +246,24 @@ def paper_values_of(path: str | Path, paper: str) -> dict[str, float | None]:
     return {row["quantity"]: row["value"] for row in read_paper_values(path) if row["paper"] == paper}
 
 
+def group_of(row: dict) -> str:
+    """The verdict group (:data:`VERDICT_GROUPS`) of a comparison row: a claim has no paper
+    value; a number is printed, or chosen or theoretical."""
+    if row["paper_value"] in (None, ""):
+        return "claims"
+    return "printed numbers" if row["source"] == "printed" else "chosen or theoretical values"
+
+
 def totals(table: list[dict]) -> list[str]:
-    """Verdict counts in three groups: printed numbers, chosen/theoretical values, claims."""
-    counts = {}
-    for row in table:
-        counts[row["verdict"]] = counts.get(row["verdict"], 0) + 1
-    return [f"{name} ({sum(counts.get(v, 0) for v in verdicts)}): "
-            + ", ".join(f"{v} {counts.get(v, 0)}" for v in verdicts)
-            for name, verdicts in VERDICT_GROUPS]
+    """Verdict counts in three groups: printed numbers, chosen/theoretical values, claims (a
+    number's UNDETERMINED, nothing to compare, is named only where there is one)."""
+    lines = []
+    for name, verdicts in VERDICT_GROUPS:
+        group = [row["verdict"] for row in table if group_of(row) == name]
+        shown = [v for v in verdicts if v != UNDETERMINED or name == "claims" or v in group]
+        lines.append(f"{name} ({len(group)}): "
+                     + ", ".join(f"{v} {group.count(v)}" for v in shown))
+    return lines
 
 
 def verdict_definitions() -> str:
@@ -260,7 +273,8 @@ def verdict_definitions() -> str:
             "own numbers imply another value, which the reproduction agrees with). Values the "
             "paper does not print (source chosen or theory): EXPECTED (<= "
             f"{100 * MATCH_TOL:g} %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT SUPPORTED, "
-            "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED.")
+            "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED. "
+            "A number with nothing to compare (every run censored) is UNDETERMINED.")
 
 
 def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path,

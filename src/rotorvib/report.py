@@ -190,7 +190,7 @@ def totals_table(table: list[dict]) -> list[str]:
     counts = verdict_counts(table)
     papers = sorted(counts)
     everything = sum(counts.values(), Counter())
-    verdicts = [v for _, group in VERDICT_GROUPS for v in group]
+    verdicts = list(dict.fromkeys(v for _, group in VERDICT_GROUPS for v in group))
     rows = [[f"Paper {p}"] + [str(counts[p][v]) for v in verdicts] for p in papers]
     rows.append(["all"] + [str(everything[v]) for v in verdicts])
     return _list_table(["paper"] + verdicts, rows)

@@ -1,6 +1,8 @@
-# `snakemake -j2 archive`: one tarball of every dataset, table and figure, the HTML report, the
-# run's record (commit and configuration), the licence and the citation file, with a SHA-256
-# manifest, restore notes and an RO-Crate describing the run (rotorvib.io.crate).
+# `snakemake -j2 archive`: one tarball of every dataset, table and figure, the report's words
+# and pages, the run's record (commit and configuration), the licence and the citation file,
+# with a SHA-256 manifest, restore notes and an RO-Crate describing the run (rotorvib.io.crate);
+# two builds of one commit and configuration give the same bytes (rotorvib.io.archive). The HTML
+# report is rebuilt from a restored archive by `snakemake --report`.
 from rotorvib.io.provenance import git_state
 
 RUN_RECORD = {"config": "results/run/config.yaml", "commit": "results/run/commit.txt"}
@@ -22,26 +24,9 @@ rule run_record:
         "../scripts/run_record.py"
 
 
-rule report_html:
-    input:
-        all_results(),
-        config=RUN_RECORD["config"],
-    output:
-        "results/report.html",
-    log:
-        logs("report_html"),
-    # Snakemake's own report of the finished run, under the run's whole configuration; the
-    # outer run holds the lock on the working directory, so this one takes none.
-    localrule: True
-    message:
-        "The HTML report"
-    shell:
-        "snakemake --nolock --configfile {input.config} --report {output} > {log} 2>&1"
-
-
 rule archive:
     input:
-        results=all_results() + rules.report_html.output,
+        results=all_results(),
         configuration=list(RUN_RECORD.values()) + configuration_files(),
         code=["Snakefile", "LICENSE", "CITATION.cff"],
     output:

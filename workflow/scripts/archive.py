@@ -16,7 +16,7 @@ crate = crate_metadata(
     code=list(inputs.code), date=git_date(),
     title="rotorvib: reproductions of three rotor-dynamics papers",
     description="Every dataset (CF-1.11 netCDF), table and figure of one run of the rotorvib "
-                "workflow, the HTML report, the run's configuration and commit.",
+                "workflow, the words and pages of its report, the run's configuration and commit.",
     snakemake_version=snakemake_package.__version__)
 make_archive(list(inputs.results) + list(inputs.configuration) + list(inputs.code),
              snakemake.output[0], generated={CRATE: crate})

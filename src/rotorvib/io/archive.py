@@ -2,8 +2,13 @@
 
 The archive holds the files under their repository paths (``results/...``) plus
 ``results/ARCHIVE_MANIFEST.sha256`` (``sha256sum -c`` format) and ``results/ARCHIVE_README.md``.
-It is reproducible: members in sorted order with a fixed mtime (``SOURCE_DATE_EPOCH``, else 0),
-owner and mode, and a gzip header without a timestamp, so the same files give the same bytes.
+It is reproducible: two builds of the same commit and configuration give the same bytes.
+Members come in sorted order with a fixed mtime (``SOURCE_DATE_EPOCH``, else 0), owner and
+mode, and a gzip header without a timestamp; Snakemake's job records are archived without
+what differs between two runs (:data:`RUN_TIMES`: start and end times, the job's in-process
+hash), which Snakemake uses for the report's runtimes only, never to decide a rerun.  The HTML
+report, whose runtimes and timestamps differ between runs, is not archived: ``snakemake
+--report`` rebuilds it from a restored archive.
 """
 
 from __future__ import annotations
@@ -12,6 +17,7 @@ import base64
 import gzip
 import hashlib
 import io
+import json
 import os
 import tarfile
 import zlib
@@ -26,9 +32,8 @@ README = "results/ARCHIVE_README.md"
 RESTORE_NOTES = """# rotorvib results archive
 
 This archive holds every dataset (netCDF), table and figure of one run of the rotorvib
-workflow, under their paths in the repository, with the HTML report (`results/report.html`),
-the run's whole configuration and commit (`results/run/`), the Snakefile, the licence and the
-citation file. `ro-crate-metadata.json` describes it all as a Workflow Run RO-Crate (the
+workflow, under their paths in the repository, with the run's whole configuration and commit
+(`results/run/`), the Snakefile, the licence and the citation file. `ro-crate-metadata.json` describes it all as a Workflow Run RO-Crate (the
 workflow, the run, each file's checksum, format and licence).
 
 ## Restore without recomputing
@@ -40,10 +45,13 @@ From the root of a clone of the repository at the commit recorded in the dataset
     sha256sum -c results/ARCHIVE_MANIFEST.sha256    # every file must say OK
     snakemake -j1 --touch                            # mark the restored files up to date
     snakemake -n                                     # "Nothing to be done"
+    snakemake --report results/report.html           # the HTML report, from the restored files
 
 `--touch` only updates timestamps; no job runs. The archive also carries Snakemake's records
 of the jobs (`.snakemake/metadata/`), so after restoring, changing a parameter in
-`config/config.yaml` reruns exactly the jobs that depend on it, as after a fresh run.
+`config/config.yaml` reruns exactly the jobs that depend on it, as after a fresh run. The
+records carry no run times (two builds of one commit give the same archive), so the report's
+runtime statistics read zero.
 
 ## Contents
 
@@ -78,14 +86,28 @@ def job_records(files) -> list[str]:
     return [n for n in names if Path(n).is_file()]
 
 
+#: The fields of a Snakemake job record that differ between two runs of the same jobs.
+RUN_TIMES = ("starttime", "endtime", "job_hash")
+
+
+def without_run_times(path: str | Path) -> str:
+    """A job record's JSON with :data:`RUN_TIMES` set to the archive's fixed time (0 for the
+    hash)."""
+    record = json.loads(Path(path).read_text(encoding="utf-8"))
+    for key in RUN_TIMES:
+        if key in record:
+            record[key] = 0 if key == "job_hash" else _mtime()
+    return json.dumps(record)
+
+
 def make_archive(files: list[str | Path], output: str | Path,
                  generated: dict[str, str] | None = None) -> Path:
     """Pack ``files`` (paths relative to the repository root) with their Snakemake job
     records, the ``generated`` members (name -> text, e.g. the RO-Crate), a manifest of all of
     them and a README."""
     files = sorted({Path(f).as_posix() for f in files})
-    files += job_records(files)
-    generated = dict(sorted((generated or {}).items()))
+    records = {record: without_run_times(record) for record in job_records(files)}
+    generated = dict(sorted({**records, **(generated or {})}.items()))
     manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files) + "".join(
         f"{hashlib.sha256(text.encode()).hexdigest()}  {name}\n"
         for name, text in generated.items())

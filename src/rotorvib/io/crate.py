@@ -54,7 +54,6 @@ DESCRIPTIONS = (
      "the relative error, the verdict and the explanation"),
     (r"results/discrepancies\.\w+", "Each printed number the reproduction misses, tested "
      "against alternative readings of the paper"),
-    (r"results/report\.html", "The HTML report of the run (snakemake --report)"),
     (r"results/report/.+\.rst", "Words of the HTML report, written from the comparison"),
     (r"results/report/pages/.+\.html", "A page of the HTML report (its summary or a table), "
      "written from the comparison"),

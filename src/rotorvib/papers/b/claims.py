@@ -89,10 +89,10 @@ def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
     for i, speed in enumerate(t1.speed.values):
         curve = mean.isel(speed=i).values
         best = int(np.nanargmin(curve)) if np.isfinite(curve).any() else None
-        rows.append({"speed_rad_s": float(speed),
-                     "m_opt_kg": None if best is None else float(t1.mass.values[best]),
-                     "mean_balance_time_s": None if best is None else float(curve[best]),
-                     "mean_envelope_time_s": None if best is None
+        rows.append({"speed_rad_s": float(speed),   # NaN where every mass has a censored run
+                     "m_opt_kg": np.nan if best is None else float(t1.mass.values[best]),
+                     "mean_balance_time_s": np.nan if best is None else float(curve[best]),
+                     "mean_envelope_time_s": np.nan if best is None
                      else float(envelope.values[i, best]),
                      "censored_masses": int(np.sum(~np.isfinite(curve)))})
     return rows
@@ -142,7 +142,8 @@ def kinematics_note(beta: xr.Dataset, mass: xr.Dataset, t1: xr.Dataset, forces: 
         add(f"Table 2 row {row + 1}: peak force (N)",
             [table2_rows(forces, R, k)[row]["force_max_N"] for k in kins], "{:.1f}")
     add("Table 1: optimum masses (kg) at the speeds",
-        [", ".join(f"{r['m_opt_kg']:g}" if r["m_opt_kg"] else "-" for r in table1_rows(t1, k))
+        [", ".join(f"{r['m_opt_kg']:g}" if np.isfinite(r["m_opt_kg"]) else "-"
+                   for r in table1_rows(t1, k))
          for k in kins], "{}")
     add("GA: optimum betas", [", ".join(f"{v:.2f}" for v in pick(ga, kinematics=k).beta_opt
                                         .values.ravel()) for k in kins], "{}")

@@ -193,10 +193,13 @@ def ga_convergence(ga, paper):
     g = pick(ga, kinematics=_kinematics(ga)[0])
     for i, eps in enumerate(g.eps_bar.values):
         for j, ic in enumerate(str(n) for n in g.ic_name.values):
-            ax.plot(g.generation.values, g.best_balance_time.values[i, j], f"C{i}",
-                    ls=["-", "--", ":"][j % 3], label=f"eps/R = {eps:g}, {ic}")
+            best = g.best_balance_time.values[i, j]
+            never = "" if np.isfinite(best).any() else " (no run balanced by t_end)"
+            ax.plot(g.generation.values, best, f"C{i}", ls=["-", "--", ":"][j % 3],
+                    label=f"eps/R = {eps:g}, {ic}{never}")
     ax.set(xlabel="generation", ylabel="best balance time (s)",
-           title="Genetic algorithm over (beta, m): convergence")
+           title="Genetic algorithm over (beta, m): convergence\n"
+                 "(a gap: no run of that generation balanced by t_end)")
     ax.legend(fontsize=7, ncol=3)
     return fig
 

@@ -68,22 +68,25 @@ def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, ma
     x_opt = np.array([r.x for r in results]).reshape(shape + (2,))
     f_opt = np.array([r.f for r in results]).reshape(shape)
     history = np.array([r.history["best_f"] for r in results]).reshape(shape + (n_gen,))
+    t_end = setup.criterion.t_end
+    censored = f_opt >= t_end                 # scored the penalty: it is no time, kept as NaN
+    f_opt, history = (np.where(v >= t_end, np.nan, v) for v in (f_opt, history))
     n_eval = np.array([r.history["n_eval"][-1] for r in results], dtype=np.int64).reshape(shape)
     dims = ("kinematics", "eps_bar", "ic")
     return xr.Dataset(
         {"beta_opt": (dims, x_opt[..., 0], {"long_name": "optimum ball damping ratio",
                                             "units": "1"}),
          "mass_opt": (dims, x_opt[..., 1], {"long_name": "optimum ball mass", "units": "kg"}),
-         "balance_time_opt": (dims, f_opt, {"long_name": "balance time at the optimum "
-                                                         "(penalised if censored)", "units": "s"}),
-         "censored": (dims, (f_opt >= setup.criterion.t_end).astype(np.int8),
-                      {"long_name": "1 if even the optimum did not balance by t_end (its "
-                                    "balance_time_opt is the penalty, not a time)", "units": "1"}),
+         "balance_time_opt": (dims, f_opt, {"long_name": "balance time at the optimum (NaN "
+                                                         "if censored)", "units": "s"}),
+         "censored": (dims, censored.astype(np.int8),
+                      {"long_name": "1 if even the optimum did not balance by t_end",
+                       "units": "1"}),
          "n_evaluations": (dims, n_eval, {"long_name": "balance-time evaluations (runs) of the "
                                                        "GA", "units": "1"}),
          "best_balance_time": (dims + ("generation",), history,
-                               {"long_name": "best balance time of each generation",
-                                "units": "s"})},
+                               {"long_name": "best balance time of each generation (NaN: no "
+                                             "run of it balanced by t_end)", "units": "s"})},
         coords={**label_coord("kinematics", kinematics, KINEMATICS_LONG_NAME),
                 **parameter_coord("eps_bar", eps_bars),
                 **label_coord("ic", list(ics), IC_LONG_NAME),
