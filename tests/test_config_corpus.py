@@ -220,6 +220,12 @@ def test_exponent_notation_is_a_number(tmp_path):
     # the same tolerance refused in an override file as in config/config.yaml
     ("paper_b:\n  balance:\n    integrator:\n      rtol: 1e-16\n",
      "'paper_b.balance.integrator.rtol'"),
+    # runs the engine would refuse inside a job, refused before any job naming the key
+    ("paper_b:\n  balance:\n    sample_dt: 1.0e-6\n", "'paper_b.balance.sample_dt': 1e-06 with "
+     "t_end = 20.0: 2e+07 samples, at most 1e+07"),
+    ("paper_b:\n  table1:\n    speeds: [200.0, 1.0e+6]\n", "'paper_b.table1.speeds': with "
+     "paper_b.balance.t_end = 20.0, the run spans 2e+07 radians"),
+    ("paper_b:\n  ga:\n    beta: [0.1, 1.0e+5]\n", "'paper_b.ga.beta': with"),
 ])
 def test_snakemake_stops_before_any_job(tmp_path, text, named):
     bad = tmp_path / "bad.yaml"

@@ -1,6 +1,10 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
 from rotorvib.checks import sobol_design_problem
-from rotorvib.papers.b.config_checks import existence_problems, study_problem
+from rotorvib.papers.b.config_checks import (
+    existence_problems,
+    run_budget_problems,
+    study_problem,
+)
 
 B_SETUP = {
     key: B[key]
@@ -57,7 +61,7 @@ for _key, _sample in (
 ):
     if problem := sobol_design_problem(_sample["n_base"], _sample["convergence"]):
         raise WorkflowError(f"config key '{_key}': {problem}")
-if _problems := existence_problems(B):
+if _problems := existence_problems(B) + run_budget_problems(B):
     raise WorkflowError("invalid configuration:\n  " + "\n  ".join(_problems))
 
 FIGURES["b"] = {

@@ -16,17 +16,10 @@ import numbers
 import numpy as np
 
 from rotorvib.checks import finite_array, integer
-from rotorvib.models.balancer import engine, kinematics
+from rotorvib.models.balancer import engine, kinematics, limits
 
-#: A run's samples (``t_end / sample_dt + 1``) at most: a stored trajectory of this many rows of
-#: a two-ball state takes 640 MB.
-MAX_SAMPLES = 10_000_000
 #: Balls of a balancer at most (a state of 2 (n + 2) entries); paper A and B have two.
 MAX_BALLS = 64
-#: The work of a run at most, in radians of its fastest time scale (:func:`fastest_rate`)
-#: over ``t_end``: an explicit integrator takes at least one step per few radians, so this
-#: bounds a run to some ten million steps (seconds), where paper B's run-up takes 4 000.
-MAX_RADIANS = 1e7
 
 _POSITIVE, _NONNEGATIVE = (0.0, False), (0.0, True)
 _PROFILES = (kinematics.CONSTANT, kinematics.RUNUP)
@@ -97,13 +90,11 @@ def state_rows(form_code: int, params: np.ndarray, y0s, name: str = "y0s",
 
 
 def samples(t_end: float, sample_dt: float) -> int:
-    """The number of samples of a run, ``floor(t_end / sample_dt) + 1``; at most
-    :data:`MAX_SAMPLES`."""
-    n = int(np.floor(t_end / sample_dt + 1e-9)) + 1
-    if n > MAX_SAMPLES:
-        raise ValueError(f"t_end / sample_dt = {t_end!r} / {sample_dt!r}: {n:.3g} samples, at "
-                         f"most {MAX_SAMPLES:.0e}")
-    return n
+    """The number of samples of a run (:func:`limits.samples`); at most
+    :data:`limits.MAX_SAMPLES`."""
+    if problem := limits.samples_problem(t_end, sample_dt):
+        raise ValueError(f"t_end / sample_dt = {t_end!r} / {sample_dt!r}: {problem}")
+    return limits.samples(t_end, sample_dt)
 
 
 def chunk(value) -> int:
@@ -144,12 +135,10 @@ def fastest_rate(form_code: int, params: np.ndarray) -> np.ndarray:
 
 def work(form_code: int, params: np.ndarray, t_end: float, name: str = "params") -> None:
     """``ValueError`` naming the first row whose run would span more than
-    :data:`MAX_RADIANS` of its fastest rate by ``t_end``."""
+    :data:`limits.MAX_RADIANS` of its fastest rate by ``t_end``."""
     with np.errstate(over="ignore"):
-        radians = fastest_rate(form_code, params) * t_end
-    too_long = np.flatnonzero(~(radians <= MAX_RADIANS))
-    if too_long.size:
-        i = int(too_long[0])
-        raise ValueError(f"{name}[{i}] with t_end = {t_end!r}: the run spans {radians[i]:.3g} "
-                         f"radians of its fastest rate (speed, natural frequency or damping "
-                         f"rate), at most {MAX_RADIANS:.0e}")
+        rates = fastest_rate(form_code, params)
+    for i, rate in enumerate(rates):
+        if problem := limits.radians_problem(float(rate), t_end):
+            raise ValueError(f"{name}[{i}] with t_end = {t_end!r}: {problem} (speed, natural "
+                             "frequency or damping rate)")

@@ -1,9 +1,12 @@
 """Paper B's configuration checks that need no model: run by the workflow when it reads the
-configuration, before any job (so they import numpy only, not the compiled engine)."""
+configuration, before any job (so they import numpy and the engine's limits only, not the
+compiled engine)."""
 
 from __future__ import annotations
 
 import numpy as np
+
+from rotorvib.models.balancer.limits import radians_problem, samples_problem
 
 
 def study_problem(study: dict) -> str | None:
@@ -52,4 +55,30 @@ def existence_problems(b: dict) -> list[str]:
             values[study["axis"]] = study["range"]["min" if study["axis"] == "mass" else "max"]
         if "mass" in values and "eps_bar" in values:
             check(f"balance_studies.{name}", np.min(values["mass"]), np.max(values["eps_bar"]))
+    return problems
+
+
+def run_budget_problems(b: dict) -> list[str]:
+    """Runs the engine would refuse (:mod:`rotorvib.models.balancer.limits`), named by their
+    config keys before any job: more samples than it keeps, or more radians of the fastest
+    rate (the disk speed, the natural frequency sqrt(k/M), the support's damping rate
+    2 zeta sqrt(k/M) or the balls' drag rate beta sqrt(k/M)) than it integrates."""
+    balance, machine = b["balance"], b["machine"]
+    t_end = balance["t_end"]
+    problems = []
+    if problem := samples_problem(t_end, balance["sample_dt"]):
+        problems.append(f"config key 'paper_b.balance.sample_dt': {balance['sample_dt']!r} with "
+                        f"t_end = {t_end!r}: {problem}")
+    omega_n = np.sqrt(machine["k"] / machine["M"])
+    rates = {"paper_b.speed.omega": b["speed"]["omega"],
+             "paper_b.table1.speeds": max(b["table1"]["speeds"]),
+             "paper_b.table2.speed": b["table2"]["speed"],
+             "paper_b.machine.k": omega_n,
+             "paper_b.machine.zeta": 2 * machine["zeta"] * omega_n,
+             "paper_b.ga.beta": max(b["ga"]["beta"]) * omega_n,
+             "paper_b.table1.beta": b["table1"]["beta"] * omega_n}
+    for key, rate in rates.items():
+        if problem := radians_problem(float(rate), t_end):
+            problems.append(f"config key '{key}': with paper_b.balance.t_end = {t_end!r}, "
+                            f"{problem}")
     return problems
