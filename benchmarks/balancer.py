@@ -34,7 +34,7 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorvib.io.config import load_yaml, validate_config
+from rotorvib.pipeline.config import load_yaml, validate_config
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.analysers import METRICS
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch

@@ -1,6 +1,6 @@
 """Benchmark of a job's start-up: the CPU time of a fresh process that imports what a batch job
 and a figure job import (the engine, datasets, plotting) and exits, with and without the
-collector pause of ``rotorvib.io.job``, paired and alternating. Run from the repository root:
+collector pause of ``rotorvib.pipeline.job``, paired and alternating. Run from the repository root:
 
     python -m benchmarks.job_start [--repeat 7]
 """
@@ -16,7 +16,7 @@ import sys
 IMPORTS = ("import rotorvib.models.balancer.simulate, rotorvib.io.datasets, "
            "rotorvib.io.plotting")
 PLAIN = f"import sys\n{IMPORTS}\nsys.stderr = open('{os.devnull}', 'w', buffering=1)"
-PAUSED = f"from rotorvib.io import job\n{IMPORTS}\njob.start('{os.devnull}')"
+PAUSED = f"from rotorvib.pipeline import job\n{IMPORTS}\njob.start('{os.devnull}')"
 
 
 def cpu_seconds(code: str) -> float:

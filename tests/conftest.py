@@ -5,8 +5,8 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.io.config import load_yaml, validate_config
-from rotorvib.io.fingerprint import import_closure
+from rotorvib.pipeline.config import load_yaml, validate_config
+from rotorvib.pipeline.fingerprint import import_closure
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 
 ROOT = Path(__file__).resolve().parents[1]

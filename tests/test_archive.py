@@ -4,7 +4,7 @@ import tarfile
 
 import pytest
 
-from rotorvib.io.archive import MANIFEST, README, make_archive, sha256_file, verify_archive
+from rotorvib.pipeline.archive import MANIFEST, README, make_archive, sha256_file, verify_archive
 
 
 def test_archive_round_trip_and_corruption(tmp_path, monkeypatch):

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.io.config import ConfigError, load_yaml, validate_config
-from rotorvib.papers.b.config_checks import existence_problems, study_problem
+from rotorvib.pipeline.config import ConfigError, load_yaml, validate_config
+from rotorvib.pipeline.config_checks import existence_problems, study_problem
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = load_yaml(ROOT / "config/schema.yaml")

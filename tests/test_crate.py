@@ -1,4 +1,4 @@
-"""The archive's RO-Crate (rotorvib.io.crate), checked by rocrate-validator."""
+"""The archive's RO-Crate (rotorvib.pipeline.crate), checked by rocrate-validator."""
 
 import hashlib
 import json
@@ -7,7 +7,7 @@ import numpy as np
 import xarray as xr
 
 from ro_crate import each_query_parsed_once, validate_crate
-from rotorvib.io.crate import crate_metadata, describe
+from rotorvib.pipeline.crate import crate_metadata, describe
 
 FILES = {"Snakefile": "rule all:\n", "LICENSE": "MIT\n", "CITATION.cff": "cff-version: 1.2.0\n",
          "config/config.yaml": "a: 1\n", "results/run/commit.txt": "commit x\n",

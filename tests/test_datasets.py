@@ -7,8 +7,8 @@ import pytest
 import xarray as xr
 
 from conftest import cf_check
-from rotorvib.io.config import config_hash
-from rotorvib.io.config import INPUT_PRODUCERS_PARAM, job_config
+from rotorvib.io.provenance import config_hash
+from rotorvib.pipeline.config import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 
 

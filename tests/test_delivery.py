@@ -16,8 +16,8 @@ import pytest
 import report_browser
 from conftest import ROOT
 from ro_crate import validate_crate
-from rotorvib.report import numbers_of_item, numbers_of_name
-from rotorvib.io.archive import verify_archive
+from rotorvib.pipeline.report import numbers_of_item, numbers_of_name
+from rotorvib.pipeline.archive import verify_archive
 from workflow_runs import REDUCED, copy_repository, copy_run, planned_jobs, snakemake
 
 pytestmark = pytest.mark.workflow

@@ -1,11 +1,11 @@
-"""Code fingerprints derived from imports (rotorvib.io.fingerprint) on a small package tree."""
+"""Code fingerprints derived from imports (rotorvib.pipeline.fingerprint) on a small package tree."""
 
 import textwrap
 
 import pytest
 
-from rotorvib.io import fingerprint as fingerprints
-from rotorvib.io.fingerprint import (behaviour_digest, code_fingerprint, import_closure,
+from rotorvib.pipeline import fingerprint as fingerprints
+from rotorvib.pipeline.fingerprint import (behaviour_digest, code_fingerprint, import_closure,
                                      imported_names, normalised_source)
 
 

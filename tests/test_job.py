@@ -1,4 +1,4 @@
-"""A job's process (rotorvib.io.job): its imports run without the cyclic collector, which then
+"""A job's process (rotorvib.pipeline.job): its imports run without the cyclic collector, which then
 works for the job with the imported objects frozen, and its standard error goes to its log."""
 
 import subprocess
@@ -8,7 +8,7 @@ from conftest import ROOT
 
 JOB = """
 import gc, sys, weakref, warnings
-from rotorvib.io import job
+from rotorvib.pipeline import job
 assert not gc.isenabled()
 import xarray
 job.start(sys.argv[1])

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.io.fingerprint import imported_names
+from rotorvib.pipeline.fingerprint import imported_names
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 MODULES = {".".join(p.relative_to(SRC).with_suffix("").parts).removesuffix(".__init__"): p
@@ -16,9 +16,16 @@ MODULES = {".".join(p.relative_to(SRC).with_suffix("").parts).removesuffix(".__i
 #: layer -> layers it must not import
 FORBIDDEN = {
     "rotorvib.io": ("rotorvib.models", "rotorvib.methods", "rotorvib.papers",
-                    "rotorvib.comparison"),
-    "rotorvib.methods": ("rotorvib.models", "rotorvib.papers", "rotorvib.comparison"),
-    "rotorvib.models": ("rotorvib.papers", "rotorvib.comparison"),
+                    "rotorvib.comparison", "rotorvib.discrepancy", "rotorvib.pipeline"),
+    "rotorvib.methods": ("rotorvib.models", "rotorvib.papers", "rotorvib.comparison",
+                         "rotorvib.discrepancy", "rotorvib.pipeline"),
+    "rotorvib.models": ("rotorvib.papers", "rotorvib.comparison", "rotorvib.discrepancy",
+                        "rotorvib.pipeline"),
+    "rotorvib.papers": ("rotorvib.pipeline",),
+    "rotorvib.comparison": ("rotorvib.pipeline",),
+    "rotorvib.discrepancy": ("rotorvib.pipeline",),
+    "rotorvib.checks": ("rotorvib.io", "rotorvib.methods", "rotorvib.models",
+                        "rotorvib.papers", "rotorvib.pipeline"),
 }
 
 
@@ -69,13 +76,13 @@ SCRIPTS = sorted((SRC.parent / "workflow/scripts").glob("*.py"))
 
 @pytest.mark.parametrize("path", SCRIPTS, ids=lambda p: p.name)
 def test_every_job_script_starts_as_a_job(path):
-    """rotorvib.io.job imported first (the imports then run without the cyclic collector), and
+    """rotorvib.pipeline.job imported first (the imports then run without the cyclic collector), and
     ``job.start(snakemake.log[0])`` once, at the top level, after every import (a module
     imported by name, ``importlib.import_module``, included)."""
     body = ast.parse(path.read_text()).body
     assert isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant)  # docstring
     first = body[1]
-    assert isinstance(first, ast.ImportFrom) and first.module == "rotorvib.io"
+    assert isinstance(first, ast.ImportFrom) and first.module == "rotorvib.pipeline"
     assert [alias.name for alias in first.names] == ["job"]
     starts = [i for i, s in enumerate(body) if ast.unparse(s) == "job.start(snakemake.log[0])"]
     assert len(starts) == 1

@@ -42,7 +42,7 @@ def test_readme_follows_fig8_through_files_that_exist():
 
 def test_readme_cites_the_papers_as_data_papers_yaml_does():
     """The README's papers section quotes data/papers.yaml, the report's source."""
-    from rotorvib.io.config import load_yaml
+    from rotorvib.pipeline.config import load_yaml
 
     text = " ".join((ROOT / "README.md").read_text().split())
     for paper in load_yaml(ROOT / "data/papers.yaml").values():

@@ -1,4 +1,4 @@
-"""The report's words (rotorvib.report): rendered through docutils and Jinja2 exactly as
+"""The report's words (rotorvib.pipeline.report): rendered through docutils and Jinja2 exactly as
 Snakemake renders captions, they must give no system message and say what the rows say."""
 
 import jinja2
@@ -6,7 +6,7 @@ import pytest
 from docutils.core import publish_parts
 from docutils.utils import Reporter
 
-from rotorvib import report
+from rotorvib.pipeline import report
 
 # Snakemake appends link targets for each category to every caption and to the landing page.
 LINKS = "\n\n" + "\n".join(f".. _{name}: javascript:app.showCategory('{name}')"

@@ -34,7 +34,7 @@ def copy_repository(dest: Path) -> Path:
     """The repository's files (as git lists them) and the package's caches in
     ``src/**/__pycache__`` (numba's, the sympy code generator's, the fingerprint memo), each
     valid only for its sources (rotorvib.methods.numba_cache, rotorvib.methods.codegen,
-    rotorvib.io.fingerprint). The library's own tests build them in the working tree; copied,
+    rotorvib.pipeline.fingerprint). The library's own tests build them in the working tree; copied,
     the workflow runs here do not compile them again."""
     for cache in (ROOT / "src").rglob("__pycache__"):
         shutil.copytree(cache, dest / cache.relative_to(ROOT), dirs_exist_ok=True)

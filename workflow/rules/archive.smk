@@ -1,7 +1,7 @@
 # `snakemake -j2 archive`: one tarball of every dataset, table and figure, the report's words
 # and pages, the run's record (commit and configuration), the licence and the citation file,
-# with a SHA-256 manifest, restore notes and an RO-Crate describing the run (rotorvib.io.crate);
-# two builds of one commit and configuration give the same bytes (rotorvib.io.archive). The HTML
+# with a SHA-256 manifest, restore notes and an RO-Crate describing the run (rotorvib.pipeline.crate);
+# two builds of one commit and configuration give the same bytes (rotorvib.pipeline.archive). The HTML
 # report is rebuilt from a restored archive by `snakemake --report`.
 from rotorvib.io.provenance import git_state
 

@@ -6,20 +6,26 @@ from types import SimpleNamespace
 
 from snakemake.exceptions import WorkflowError
 
-from rotorvib.io.config import (
+from rotorvib.pipeline.config import (
     INPUT_PRODUCERS_PARAM,
     ConfigError,
-    config_hash,
+    check_config,
     job_config,
     load_yaml,
-    validate_config,
     workflow_config,
 )
-from rotorvib.io.fingerprint import code_fingerprint
-from rotorvib.report import entry_label, label, names_in, subcategory
+from rotorvib.io.provenance import config_hash
+from rotorvib.pipeline.fingerprint import code_fingerprint
+from rotorvib.pipeline.report import entry_label, label, names_in, subcategory
+from rotorvib.pipeline.snakemake_rules import (
+    add_params,
+    producer,
+    script_path,
+    wildcards,
+)
 
 try:
-    # The configuration as this package reads it (rotorvib.io.strict_yaml: YAML 1.2, strict),
+    # The configuration as this package reads it (rotorvib.pipeline.strict_yaml: YAML 1.2, strict),
     # replacing Snakemake's reading (YAML 1.1, a duplicate key's last value kept), from the
     # same files in the same order: the Snakefile's `configfile:`, each --configfile, --config.
     _settings = workflow.config_settings
@@ -31,7 +37,7 @@ try:
         replace_base=_settings.replace_workflow_config,
     )
     config.clear()
-    config.update(validate_config(_read, load_yaml("config/schema.yaml")))
+    config.update(check_config(_read, load_yaml("config/schema.yaml")))
 except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
@@ -76,7 +82,7 @@ def benchmarks(name):
 # Figures of each paper, filled by the paper's .smk and drawn by the figure jobs (figures.smk);
 # FIGURES[paper][name] names the drawing function of rotorvib.papers.<paper>.figures, the
 # datasets it reads (argument -> dataset name), what it shows (the first sentence of its
-# report caption, rotorvib.report), the comparison items it shows beyond those its name
+# report caption, rotorvib.pipeline.report), the comparison items it shows beyond those its name
 # numbers ("Fig 8" for fig8) and its options.
 FIGURES = {}
 
@@ -243,34 +249,33 @@ def results_of(paper, datasets, tables=()):
 
 def add_code_fingerprints(rules):
     """Give every script rule a ``code`` parameter (the fingerprint of the library code its
-    script can run, rotorvib.io.fingerprint), so that a behaviour-changing edit of that code
-    reruns exactly its jobs. A module the script loads by name is its ``module`` parameter.
+    script can run, rotorvib.pipeline.fingerprint), so that a behaviour-changing edit of that
+    code reruns exactly its jobs. A module the script loads by name is its ``module`` parameter.
     """
     for each in rules:
-        if not each.script:
+        if (script := script_path(each)) is None:
             continue
-        script = each.basedir.join(each.script).get_path_or_uri(secret_free=True)
         named = dict(each.params.items()).get("module")
         if callable(named):
-            each.set_params(
-                code=lambda wc, s=script, m=named: code_fingerprint(s, m(wc))
+            add_params(
+                each, code=lambda wc, s=script, m=named: code_fingerprint(s, m(wc))
             )
         else:
-            each.set_params(code=code_fingerprint(script, *([named] if named else [])))
+            add_params(each, code=code_fingerprint(script, *([named] if named else [])))
 
 
 def producer_of(path):
     """The rule that makes ``path`` in this run and the SHA-256 of the configuration it records
     in it (its parameters for that file's wildcards, rotorvib.io.datasets.job_config).
     """
-    producer = next(each for each in workflow.rules if each.is_producer(path))
-    wildcards = SimpleNamespace(**producer.get_wildcards(path))
+    maker = producer(workflow.rules, path)
+    given = SimpleNamespace(**wildcards(maker, path))
     return {
-        "rule": producer.name,
+        "rule": maker.name,
         "config_sha256": config_hash(
             {
-                name: value(wildcards) if callable(value) else value
-                for name, value in job_config(producer.params).items()
+                name: value(given) if callable(value) else value
+                for name, value in job_config(maker.params).items()
             }
         ),
     }
@@ -284,10 +289,10 @@ def input_producers(wildcards, input):
 
 
 def add_input_checks(rules):
-    """Give every script rule the parameter rotorvib.io.config.INPUT_PRODUCERS_PARAM."""
+    """Give every script rule the parameter rotorvib.pipeline.config.INPUT_PRODUCERS_PARAM."""
     for each in rules:
-        if each.script:
-            each.set_params(**{INPUT_PRODUCERS_PARAM: input_producers})
+        if script_path(each) is not None:
+            add_params(each, **{INPUT_PRODUCERS_PARAM: input_producers})
 
 
 def configuration_files():

@@ -1,11 +1,4 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
-from rotorvib.checks import sobol_design_problem
-from rotorvib.papers.b.config_checks import (
-    existence_problems,
-    run_budget_problems,
-    study_problem,
-)
-
 B_SETUP = {
     key: B[key]
     for key in ("machine", "initial_state", "speed", "balance", "marginal_growth")
@@ -51,18 +44,6 @@ B_RUNS = {
     "kinematics": B["kinematics"],
     "ics": B["initial_conditions"],
 }
-
-for _name, _study in B["balance_studies"].items():
-    if problem := study_problem(_study):
-        raise WorkflowError(f"config key 'paper_b.balance_studies.{_name}': {problem}")
-for _key, _sample in (
-    ("paper_b.uncertainty", B["uncertainty"]),
-    ("paper_b.uncertainty.mean_over_ics", B["uncertainty"]["mean_over_ics"]),
-):
-    if problem := sobol_design_problem(_sample["n_base"], _sample["convergence"]):
-        raise WorkflowError(f"config key '{_key}': {problem}")
-if _problems := existence_problems(B) + run_budget_problems(B):
-    raise WorkflowError("invalid configuration:\n  " + "\n  ".join(_problems))
 
 FIGURES["b"] = {
     "fig2": figure(

@@ -1,11 +1,4 @@
 # Paper C: dual dynamic vibration absorber on a torsional rotor.
-from rotorvib.checks import sobol_design_problem
-
-if problem := sobol_design_problem(
-    C["uncertainty"]["n_base"], C["uncertainty"]["convergence"]
-):
-    raise WorkflowError(f"config key 'paper_c.uncertainty': {problem}")
-
 FIGURES["c"] = {
     "fig3": figure(
         "fig3",

@@ -1,5 +1,5 @@
 # The report: its words (the landing page and the caption of every figure and table) and its
-# HTML pages (the summary, every table), written from the comparison by rotorvib.report so that
+# HTML pages (the summary, every table), written from the comparison by rotorvib.pipeline.report so that
 # they cannot disagree with it; then the files it shows. Snakemake reads them when it renders
 # `snakemake --report` (Snakefile `report:`, the `report()` flags of rule report_results).
 

@@ -1,8 +1,8 @@
 """Rule a_responses: paper A's responses by Runge-Kutta and multiple scales (Figs 2-6)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.a.studies import responses_dataset
 

@@ -1,10 +1,10 @@
 """Rule a_slow_flow: the small-mu slow flow's stability boundary against the exact one."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.a.studies import slow_flow_dataset
 

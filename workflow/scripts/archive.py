@@ -1,12 +1,12 @@
 """Rule archive: one tarball of all results with a SHA-256 manifest, restore notes and an
 RO-Crate describing the run."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import snakemake as snakemake_package
 
-from rotorvib.io.archive import make_archive
-from rotorvib.io.crate import CRATE, crate_metadata
+from rotorvib.pipeline.archive import make_archive
+from rotorvib.pipeline.crate import CRATE, crate_metadata
 from rotorvib.io.provenance import git_date
 
 job.start(snakemake.log[0])

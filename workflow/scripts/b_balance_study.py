@@ -1,11 +1,11 @@
 """Rule b_balance_study: balance time against one run parameter (config paper_b.balance_studies),
 for every kinematics and initial condition."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup

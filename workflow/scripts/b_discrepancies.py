@@ -2,13 +2,13 @@
 hypotheses of rotorvib.papers.b.discrepancies, and the parameter values that would reproduce
 the ones missed by more than 10 %."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.discrepancies import hypotheses, inversions, quantities

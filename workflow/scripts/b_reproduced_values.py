@@ -1,6 +1,6 @@
 """Rule b_reproduced_values: every stated value and claim of paper B, measured on the datasets."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.comparison import paper_values_of, write_reproduced
 from rotorvib.io.datasets import read_dataset

@@ -1,10 +1,10 @@
 """Rule b_stability: stability of the balanced state on paper B's grids (Figs 2-3)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.stability_maps import stability_dataset
 

@@ -1,10 +1,10 @@
 """Rule b_table1_runs: balance time over ball mass for each operating speed (Table 1)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup

@@ -1,6 +1,6 @@
 """Rule b_tables: Tables 1 and 2 of paper B regenerated, and the kinematics note."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from pathlib import Path
 

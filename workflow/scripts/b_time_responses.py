@@ -1,8 +1,8 @@
 """Rule b_time_responses: r(t), ball angles and bearing force of Figs 4-7, 11, 15, 16."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.responses import figure_runs, time_response_dataset
 from rotorvib.papers.b.setup import Setup

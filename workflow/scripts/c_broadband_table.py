@@ -1,6 +1,6 @@
 """Rule c_broadband_table: the broadband absorber beside the other designs (beyond paper C)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table

@@ -2,11 +2,11 @@
 hypotheses of rotorvib.papers.c.discrepancies, and the parameter values that would reproduce
 the ones missed by more than 10 %."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.c.discrepancies import (MODELS, hypotheses, inversions,
                                              printed_determinant_ga)

@@ -1,10 +1,10 @@
 """Rule c_frequency_response: Fig 5's frequency responses (paper C, eq. 20)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import numpy as np
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import frequency_response_dataset

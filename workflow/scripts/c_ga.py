@@ -1,10 +1,10 @@
 """Rule c_ga: genetic-algorithm tuning of the dual absorber (paper C, section 4)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import sys
 
-from rotorvib.io.config import job_config
+from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.optimise import tune_dual_absorber

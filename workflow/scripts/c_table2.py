@@ -1,6 +1,6 @@
 """Rule c_table2: Table 2 beside the optimum the genetic algorithm finds."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table

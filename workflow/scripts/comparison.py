@@ -1,7 +1,7 @@
 """Rule comparison: join the papers' values with the reproduced ones (results/comparison.*) and
 explain every number missed by the discrepancy analysis (results/discrepancies.*)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib import discrepancy
 from rotorvib.comparison import (build_table, read_paper_values, read_reproduced,

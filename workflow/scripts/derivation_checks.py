@@ -1,6 +1,6 @@
 """Rules *_derivation_checks: a paper's printed equations checked symbolically (sympy)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import importlib
 import sys

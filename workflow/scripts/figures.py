@@ -3,7 +3,7 @@
 name) and the paper's values, and saved as PNG and SVG; beside each, what it draws and the
 parameters it depends on (JSON), which its caption states (rule report_text)."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import importlib
 import json

@@ -1,14 +1,15 @@
 """Rule report_text: the report's landing page, summary page, every caption and every table's
 HTML page, from the comparison table."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 import csv
 import json
 from pathlib import Path
 
-from rotorvib import discrepancy, report, report_pages
-from rotorvib.io.config import load_yaml
+from rotorvib import discrepancy
+from rotorvib.pipeline import report, report_pages
+from rotorvib.pipeline.config import load_yaml
 
 job.start(snakemake.log[0])
 

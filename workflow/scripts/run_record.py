@@ -1,6 +1,6 @@
 """Rule run_record: the run's whole (validated) configuration and its commit, as files."""
 
-from rotorvib.io import job  # first: the imports below run without the cyclic GC
+from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from pathlib import Path
 

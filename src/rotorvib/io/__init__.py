@@ -1,1 +1,1 @@
-"""Input and output: configuration, datasets and their coordinates, provenance, code fingerprints, tables, plotting, archive, cache files."""
+"""Input and output: datasets and their coordinates, provenance, tables, plotting, cache files."""

@@ -2,11 +2,23 @@
 
 from __future__ import annotations
 
+import hashlib
 import importlib.metadata
+import json
 import os
 import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
+
+def canonical_json(obj) -> str:
+    """Key-sorted, compact JSON: the canonical text of a configuration (section)."""
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"), ensure_ascii=True)
+
+
+def config_hash(obj) -> str:
+    """SHA-256 of :func:`canonical_json`; equal configs give equal hashes."""
+    return hashlib.sha256(canonical_json(obj).encode()).hexdigest()
+
 
 #: Packages whose versions are recorded in every dataset.
 RECORDED_PACKAGES = ("rotorvib", "numpy", "scipy", "numba", "xarray", "netCDF4", "pymoo", "SALib",

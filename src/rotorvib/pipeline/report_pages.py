@@ -3,7 +3,7 @@
 Snakemake's report shows a ``text/html`` result inside the page (in a frame), and offers any
 other file, a CSV among them, only as a download. Each table is therefore written as an HTML
 page: its caption, the table (sortable by any column, filterable by text), and its CSV as a
-download link carried inside the page. The summary page is reStructuredText (rotorvib.report)
+download link carried inside the page. The summary page is reStructuredText (rotorvib.pipeline.report)
 rendered by docutils with its own stylesheet embedded.
 """
 

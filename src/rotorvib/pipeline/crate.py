@@ -18,8 +18,8 @@ from pathlib import Path
 import netCDF4
 from rocrate.rocrate import ROCrate
 
-from rotorvib.io.archive import sha256_file
-from rotorvib.report import label
+from rotorvib.pipeline.archive import sha256_file
+from rotorvib.pipeline.report import label
 
 CRATE = "ro-crate-metadata.json"
 FORMATS = {".nc": "application/x-netcdf", ".csv": "text/csv", ".md": "text/markdown",

@@ -1,11 +1,13 @@
-"""Paper B's configuration checks that need no model: run by the workflow when it reads the
-configuration, before any job (so they import numpy and the engine's limits only, not the
-compiled engine)."""
+"""The configuration's checks beyond its schema (:func:`problems`): paper B's studies, Sobol
+designs, the existence bound of every ball mass and the engine's limits on a run, each named by
+its config key.  The workflow runs them when it reads the configuration, before any job, so
+they import numpy and the engine's limits only, not the compiled engine."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from rotorvib.checks import sobol_design_problem
 from rotorvib.models.balancer.limits import radians_problem, samples_problem
 
 
@@ -82,3 +84,19 @@ def run_budget_problems(b: dict) -> list[str]:
             problems.append(f"config key '{key}': with paper_b.balance.t_end = {t_end!r}, "
                             f"{problem}")
     return problems
+
+
+def problems(config: dict) -> list[str]:
+    """Every problem of a configuration that satisfies the schema: a paper B study that does
+    not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
+    run, a ball mass below the existence bound, a run the engine would refuse."""
+    b = config["paper_b"]
+    found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
+             for name, study in b["balance_studies"].items()
+             if (problem := study_problem(study))]
+    for key, sample in (("paper_b.uncertainty", b["uncertainty"]),
+                        ("paper_b.uncertainty.mean_over_ics", b["uncertainty"]["mean_over_ics"]),
+                        ("paper_c.uncertainty", config["paper_c"]["uncertainty"])):
+        if problem := sobol_design_problem(sample["n_base"], sample["convergence"]):
+            found.append(f"config key '{key}': {problem}")
+    return found + existence_problems(b) + run_budget_problems(b)

@@ -1,6 +1,6 @@
 """Loading, validating and fingerprinting the pipeline configuration.
 
-Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.io.strict_yaml`): a duplicate key,
+Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.pipeline.strict_yaml`): a duplicate key,
 a syntax error or a scalar that YAML 1.1 reads otherwise is reported with its file, line and
 column, and ``1e-9`` is a number rather than a string.  The configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
 computation: every number must be finite, an integer must be written as one, and the schema's
@@ -11,15 +11,13 @@ violation is reported with the dotted key it concerns and what is allowed, e.g.:
     config key 'paper_c.rotor.M': -1.0 is not allowed; must be a number > 0 (disk mass, kg)
 
 Snakemake parses ``--configfile`` files itself before the workflow starts and reports a YAML
-syntax error without its place; ``python -m rotorvib.io.config FILE...`` checks files as the
+syntax error without its place; ``python -m rotorvib.pipeline.config FILE...`` checks files as the
 workflow would (later files override earlier ones) and gives file, line and column.
 """
 
 from __future__ import annotations
 
 import copy
-import hashlib
-import json
 import math
 from functools import cache
 from pathlib import Path
@@ -27,7 +25,8 @@ from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from rotorvib.io.strict_yaml import ConfigError, load_value, load_yaml
+from rotorvib.pipeline.config_checks import problems
+from rotorvib.pipeline.strict_yaml import ConfigError, load_value, load_yaml
 
 if TYPE_CHECKING:
     import jsonschema
@@ -50,7 +49,7 @@ def typed_overrides(overrides: dict) -> dict:
 
     Snakemake reads ``--config paper_c='{den_hartog: {d: 0.09}}'`` with YAML's base loader,
     which leaves every nested value a string ("0.09"); each such string is read again here as
-    a value of a configuration file would be (:func:`rotorvib.io.strict_yaml.load_value`:
+    a value of a configuration file would be (:func:`rotorvib.pipeline.strict_yaml.load_value`:
     ``0.09`` and ``1e-9`` are numbers, ``printed`` stays a string). Top-level values, which
     Snakemake already types, are kept.  Only ``--config`` values come here: a configuration
     file is read once, by :func:`load_yaml`."""
@@ -272,19 +271,30 @@ def merge(base: dict, override: dict) -> dict:
     return merged
 
 
+def check_config(config: dict, schema: dict) -> dict:
+    """The workflow's configuration, validated: the schema (:func:`validate_config`), then the
+    checks beyond it (:func:`rotorvib.pipeline.config_checks.problems`); :class:`ConfigError`
+    listing every problem otherwise."""
+    checked = validate_config(config, schema)
+    if found := problems(checked):
+        raise ConfigError("invalid configuration:\n  " + "\n  ".join(found))
+    return checked
+
+
 def check_files(paths, schema_path: str | Path = "config/schema.yaml") -> dict:
-    """The validated configuration of ``paths`` merged in order; :class:`ConfigError` otherwise."""
+    """The checked configuration (:func:`check_config`) of ``paths`` merged in order;
+    :class:`ConfigError` otherwise."""
     config: dict = {}
     for path in paths:
         config = merge(config, load_yaml(path))
-    return validate_config(config, load_yaml(schema_path))
+    return check_config(config, load_yaml(schema_path))
 
 
 def main(argv=None) -> int:
-    """``python -m rotorvib.io.config [--schema S] FILE...``: 0 and "valid" or 1 and the errors."""
+    """``python -m rotorvib.pipeline.config [--schema S] FILE...``: 0 and "valid" or 1 and the errors."""
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m rotorvib.io.config",
+    parser = argparse.ArgumentParser(prog="python -m rotorvib.pipeline.config",
                                      description="Check configuration files as the workflow does.")
     parser.add_argument("--schema", default="config/schema.yaml")
     parser.add_argument("files", nargs="+")
@@ -296,16 +306,6 @@ def main(argv=None) -> int:
         return 1
     print(f"valid: {' + '.join(args.files)}")
     return 0
-
-
-def canonical_json(obj: Any) -> str:
-    """Key-sorted, compact JSON: the canonical text of a configuration (section)."""
-    return json.dumps(obj, sort_keys=True, separators=(",", ":"), ensure_ascii=True)
-
-
-def config_hash(obj: Any) -> str:
-    """SHA-256 of :func:`canonical_json`; equal configs give equal hashes."""
-    return hashlib.sha256(canonical_json(obj).encode()).hexdigest()
 
 
 if __name__ == "__main__":

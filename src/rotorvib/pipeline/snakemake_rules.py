@@ -1,0 +1,40 @@
+"""The one place the workflow uses Snakemake's rule objects beyond its documented API.
+
+Snakemake documents rules as they are written in a Snakefile, not the ``Rule`` objects the
+Snakefile can reach through ``workflow.rules``.  The workflow needs four things from them that no
+public API gives: a rule's script path, to give the rule its code fingerprint as a parameter
+(``Rule.set_params``), and, for an input dataset, the rule that makes it and its wildcards
+(``Rule.is_producer``, ``Rule.get_wildcards``), to check on read that the dataset was made by
+that rule under this run's configuration.  Every such use is here; ``tests/test_snakemake_rules.py``
+fails on a Snakemake whose ``Rule`` no longer has them, so an upgrade breaks loudly, not
+silently.  This module does not import Snakemake: the Snakefile hands it the rule objects.
+"""
+
+from __future__ import annotations
+
+#: The ``Rule`` methods used here, as the pinned Snakemake defines them (name: parameters).
+USED = {"set_params": ("self", "params", "kwparams"), "is_producer": ("self", "requested_output"),
+        "get_wildcards": ("self", "requested_output", "wildcards_dict")}
+
+
+def script_path(rule) -> str | None:
+    """The path of ``rule``'s script, or None for a rule without one."""
+    if not rule.script:
+        return None
+    return rule.basedir.join(rule.script).get_path_or_uri(secret_free=True)
+
+
+def add_params(rule, **params) -> None:
+    """Give ``rule`` more parameters (values or functions of the wildcards), as if written in
+    its ``params:``."""
+    rule.set_params(**params)
+
+
+def producer(rules, path: str):
+    """The rule of ``rules`` that makes ``path``."""
+    return next(rule for rule in rules if rule.is_producer(path))
+
+
+def wildcards(rule, path: str) -> dict:
+    """The wildcards of ``rule`` that make ``path``."""
+    return dict(rule.get_wildcards(path))
