@@ -14,8 +14,9 @@ from rotorvib.models.balancer.expansion import balanced_state, taylor_at
 from rotorvib.models.balancer.parameters import Dimensionless, SpeedProfile, rotating_parameters
 from rotorvib.models.balancer.simulate import BalanceCriterion, run
 
-REFERENCE = ("Paper A: dynamics and stability of a rotor with an automatic ball balancer by the "
-             "multiple scales method (Persian); model and parameters reconstructed in digest A")
+REFERENCE = ("Paper A: Dynamics and stability of a rotor equipped with an automatic ball balancer "
+             "by the multiple scales method (Persian; data/papers.yaml); model and parameters "
+             "reconstructed in digest A")
 METHODS = ("runge_kutta", "one_term", "two_term")
 _STATE = (("u", "x of the geometric centre in the rotating frame / R", "1"),
           ("v", "y of the geometric centre in the rotating frame / R", "1"),

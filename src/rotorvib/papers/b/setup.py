@@ -23,9 +23,9 @@ from rotorvib.models.balancer.settling import StopRule
 from rotorvib.models.balancer.simulate import (ATOL, METHOD, RTOL, BalanceCriterion, check_batch,
                                                run_batch)
 
-REFERENCE = ("Paper B: M. Rezaee, R. Fathi, The effect of damping ratio and balls mass on the "
-             "stability of automatic ball balancer and determining their optimum values, "
-             "Modares Mechanical Engineering 14(3):110-118, 2014 (Persian)")
+REFERENCE = ("Paper B: The effect of damping ratio and balls mass on the stability of automatic "
+             "ball balancer and determining their optimum values (M. Rezaee, R. Fathi, Modares "
+             "Mechanical Engineering 14(3):110-118, 2014, Persian; data/papers.yaml)")
 
 #: Parameters of one run that a study may vary or fix: long name and units of each.
 RUN_PARAMETERS = {

@@ -32,9 +32,9 @@ from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_ve
 from rotorvib.models.absorber.time_response import linear_response
 from rotorvib.models.absorber.tuning import den_hartog_single
 from rotorvib.papers.c.optimise import design_bounds
+from rotorvib.papers.c.studies import REFERENCE as STUDIES_REFERENCE
 
-REFERENCE = ("Paper C: dual dynamic vibration absorber for the torsional vibration of a rotor; "
-             "section 4 (bounds), beyond the paper")
+REFERENCE = f"{STUDIES_REFERENCE}; section 4 (bounds), beyond the paper"
 _claim = partial(Reproduced.claim, "C")
 DESIGNS = {"table2": "Table 2 (paper)",
            "single_frequency": "GA optimum of |Theta(omega_n)| (section 4)",

@@ -25,8 +25,9 @@ from rotorvib.models.absorber.time_response import (linear_response, response_ti
 from rotorvib.models.absorber.tuning import CONSTRUCTIONS, den_hartog_single, mass_ratio_family
 from rotorvib.papers.c.optimise import design_bounds
 
-REFERENCE = ("Paper C: dual dynamic vibration absorber for the torsional vibration of a rotor, "
-             "tuned by a genetic algorithm; Journal of Vibration and Sound 13(26), 2024 (Persian)")
+REFERENCE = ("Paper C: A dual dynamic vibration absorber for the torsional vibration of a rotor, "
+             "tuned by a genetic algorithm (Persian, 2024; journal, volume and pages not in the "
+             "source text; data/papers.yaml)")
 _UNITS = {"m": "kg", "k": "N m-1", "c": "N s m-1", "d": "m"}
 _W = {"long_name": "forcing frequency ratio omega/omega_n", "units": "1"}
 _D = "dimensionless torsional amplitude D = |Theta| k_t / Gamma0"

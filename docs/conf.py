@@ -1,0 +1,48 @@
+"""Sphinx configuration of the rotorvib documentation (Markdown pages through MyST, the API
+reference from the package's docstrings).  Build: ``sphinx-build -W -b html docs
+docs/_build/html``; the tests build it with warnings as errors (tests/test_docs.py)."""
+
+from pathlib import Path
+
+from rotorvib.pipeline.config import load_yaml
+from rotorvib.pipeline.config_reference import reference
+
+ROOT = Path(__file__).resolve().parents[1]
+
+project = "rotorvib"
+author = "rotorvib reproduction project"
+copyright = "the rotorvib authors (code MIT, data CC-BY-4.0)"
+extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.mathjax"]
+source_suffix = {".md": "markdown"}
+exclude_patterns = ["_build", "_generated"]
+myst_heading_anchors = 3
+myst_enable_extensions = ["dollarmath"]
+html_theme = "alabaster"
+autodoc_member_order = "bysource"
+autodoc_typehints = "none"
+
+
+def write_configuration_reference(app):
+    """docs/_generated/configuration-reference.md from config/schema.yaml and the comments of
+    config/config.yaml, on every build."""
+    _write(ROOT / "docs/_generated/configuration-reference.md",
+           reference(ROOT / "config/schema.yaml", ROOT / "config/config.yaml"))
+
+
+def write_papers(app):
+    """docs/_generated/papers.md: each paper's citation and summary from data/papers.yaml."""
+    papers = load_yaml(ROOT / "data/papers.yaml")
+    text = "\n".join(f"- **{letter}.** {paper['citation'].strip()} *Summary:* "
+                      f"{paper['summary'].strip()}\n" for letter, paper in sorted(papers.items()))
+    _write(ROOT / "docs/_generated/papers.md", text)
+
+
+def _write(path: Path, text: str) -> None:
+    path.parent.mkdir(exist_ok=True)
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+def setup(app):
+    app.connect("builder-inited", write_configuration_reference)
+    app.connect("builder-inited", write_papers)

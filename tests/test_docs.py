@@ -1,0 +1,83 @@
+"""The documentation (docs/, Sphinx with MyST): it builds with warnings as errors, every Python
+example in it runs, and what it says of the code is what the code is."""
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+from rotorvib.pipeline.fingerprint import import_closure
+
+DOCS = ROOT / "docs"
+
+
+def test_the_documentation_builds_with_warnings_as_errors(tmp_path):
+    """A broken cross-reference, an unknown page in a toctree or a docstring that is not valid
+    reStructuredText is an error."""
+    build = subprocess.run([str(Path(sys.executable).parent / "sphinx-build"), "-W",
+                            "--keep-going", "-q", "-b", "html", str(DOCS), str(tmp_path)],
+                           capture_output=True, text=True, timeout=600)
+    assert build.returncode == 0, build.stdout + build.stderr
+    assert "paper_c.rotor.M" in (tmp_path / "configuration.html").read_text()
+    assert "rotorvib.models.balancer.simulate.run_batch" in (tmp_path / "api.html").read_text()
+
+
+def _python_blocks():
+    return [(page.name, block) for page in sorted(DOCS.glob("*.md"))
+            for block in re.findall(r"```python\n(.*?)```", page.read_text(), re.S)]
+
+
+@pytest.mark.workflow
+@pytest.mark.parametrize("page, code", _python_blocks(), ids=lambda v: str(v)[:30])
+def test_every_python_example_runs(page, code, run_dir, monkeypatch, capsys):
+    """Each example of the docs, run in a finished reduced run (where its results exist)."""
+    monkeypatch.chdir(run_dir)
+    exec(compile(code, page, "exec"), {})
+    if "balance time" in code:      # the API example prints what the text promises
+        out = capsys.readouterr().out
+        assert "balance time 6.179 s (censored: False)" in out and "can balance: True" in out
+
+
+def _layout_block():
+    return re.search(r"## Layout\n\n```\n(.*?)```", (DOCS / "architecture.md").read_text(),
+                     re.S).group(1)
+
+
+def test_the_layout_names_every_package_and_module():
+    """The architecture page's layout matches the tree: every package directory of
+    src/rotorvib and every module in it is named there."""
+    layout = _layout_block()
+    src = ROOT / "src/rotorvib"
+    for package in sorted(p for p in src.rglob("*") if (p / "__init__.py").is_file()):
+        rel = package.relative_to(src).as_posix()
+        if rel != ".":
+            assert f"{rel}/" in layout, rel
+        for module in package.glob("*.py"):
+            if module.stem != "__init__":
+                assert re.search(rf"\b{module.stem}\b", layout), module
+
+
+def test_following_fig8_names_the_files_and_modules_a_reader_crosses():
+    """The user guide's walk through paper B's Fig 8: its six files exist, and the modules it
+    says the two jobs load are their scripts' import closure (what the code fingerprints
+    follow)."""
+    text = (DOCS / "user-guide.md").read_text()
+    walk = text.split("**Following one figure**", 1)[1].split("\nA balance-time study", 1)[0]
+    files = re.findall(r"^\d\. `([^`]+)`", walk, re.M)
+    assert len(files) == 6 and all((ROOT / f).is_file() for f in files), files
+
+    def listed(label):
+        line = re.search(rf"^- {label}: (.*)$", walk, re.M).group(1)
+        return re.findall(r"`([^`]+)`", line)
+
+    def loaded(*entries):
+        return [m for m in import_closure(*entries, root=ROOT / "src")
+                if m.startswith("rotorvib.") and m.count(".") >= 2]
+
+    assert listed("the study") == loaded(str(ROOT / "workflow/scripts/b_balance_study.py"))
+    assert listed("the figure") == loaded(str(ROOT / "workflow/scripts/figures.py"),
+                                          "rotorvib.papers.b.figures")
+    assert '"fig8": figure("balance_against", {"study": "balance_beta"}' in walk
