@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.image import imsave  # noqa: E402
 from matplotlib.legend import Legend  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 STYLE = {
     "figure.figsize": (7.0, 4.3),
@@ -32,6 +33,12 @@ PAPER_STYLE = {"color": "crimson", "linestyle": "--", "linewidth": 1.2}
 def figure(nrows: int = 1, ncols: int = 1, **kwargs):
     with plt.rc_context(STYLE):
         return plt.subplots(nrows, ncols, **kwargs)
+
+
+def generation_axis(ax) -> None:
+    """Label the x axis of a genetic algorithm's convergence plot: whole generations only."""
+    ax.set_xlabel("generation")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
 
 
 def paper_hline(ax, value: float, label: str) -> None:

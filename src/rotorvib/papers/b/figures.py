@@ -11,7 +11,8 @@ import numpy as np
 
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.claims import faster_share, printed_values
-from rotorvib.io.plotting import PAPER_STYLE, figure, paper_vline, sensitivity
+from rotorvib.io.plotting import (PAPER_STYLE, figure, generation_axis, paper_vline,
+                                  sensitivity)
 
 STYLES = {0: "-", 1: "--"}
 SYMBOLS = {"eps_bar": "eps/R"}
@@ -197,9 +198,10 @@ def ga_convergence(ga, paper):
             never = "" if np.isfinite(best).any() else " (no run balanced by t_end)"
             ax.plot(g.generation.values, best, f"C{i}", ls=["-", "--", ":"][j % 3],
                     label=f"eps/R = {eps:g}, {ic}{never}")
-    ax.set(xlabel="generation", ylabel="best balance time (s)",
+    ax.set(ylabel="best balance time (s)",
            title="Genetic algorithm over (beta, m): convergence\n"
                  "(a gap: no run of that generation balanced by t_end)")
+    generation_axis(ax)
     ax.legend(fontsize=7, ncol=3)
     return fig
 

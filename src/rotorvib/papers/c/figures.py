@@ -10,7 +10,8 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
 from rotorvib.io.coords import labels, pick
-from rotorvib.io.plotting import figure, paper_hline, paper_point, paper_vline, sensitivity
+from rotorvib.io.plotting import (figure, generation_axis, paper_hline, paper_point, paper_vline,
+                                  sensitivity)
 from rotorvib.papers.c.claims import undamped_peaks
 
 NONLINEAR = 1  # index of "nonlinear eqs. (8)-(10)" on the model axis of the time responses
@@ -161,8 +162,9 @@ def ga_convergence(ga, paper):
     shown = [*ga.best_objective.values, *ga.mean_objective.values, float(ga.theta_table2),
              paper["theta_ga"]]
     ax.set_ylim(min(shown) / 1.5, max(shown) * 1.5)      # no line on the frame
-    ax.set(xlabel="generation", ylabel="|Theta(omega_n)| (rad)",
+    ax.set(ylabel="|Theta(omega_n)| (rad)",
            title="Genetic algorithm: convergence of the objective")
+    generation_axis(ax)
     ax.legend()
     return fig
 
