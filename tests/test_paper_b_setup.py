@@ -192,7 +192,7 @@ def test_the_robust_objectives_are_the_mean_time_and_the_worst_force_of_direct_r
     assert phi.shape == (3, 2) and np.all((phi >= 0) & (phi < 360))
     designs = np.array([[0.2, 0.006], [1.0, 0.02]])
     f = robust_objectives(design_runs(setup, phi, kinematics="printed", eps_bar=0.012,
-                                      speed=220.0, censored_penalty=2.0))(designs)
+                                      speed=220.0), censored_time=16.0)(designs)
     for (beta, mass), (mean_time, worst_force) in zip(designs, f):
         runs = [run(engine.FIXED, *setup.run_inputs(mass=mass, beta=beta, eps_bar=0.012,
                                                     phi0_deg=tuple(p), kinematics="printed",
@@ -267,3 +267,28 @@ def test_a_ga_that_never_balances_keeps_no_penalty_as_a_time(setup):
     assert np.isnan(ds.balance_time_opt).all() and np.isnan(ds.best_balance_time).all()
     assert (ds.censored == 1).all()
     assert verdict(5.0, float(ds.balance_time_opt.squeeze())) == (None, "UNDETERMINED")
+
+
+def test_a_design_with_a_censored_run_has_no_mean_and_decides_nothing():
+    """No penalty stored as a time: a design one of whose runs never balanced has a NaN mean,
+    is no match on the front, and the claim about the GA optimum is undetermined when it is
+    that design."""
+    import xarray as xr
+
+    from rotorvib.papers.b.pareto import gap_to_front, pareto_rows
+
+    times = np.array([[4.0, 4.8, 4.4, 4.4], [3.0, np.nan, 2.9, 3.1]])
+    ds = xr.Dataset(
+        {"front_balance_time": ("front", [3.0, np.nan, 5.0]),
+         "front_force": ("front", [90, 60, 70]), "front_beta": ("front", [0.2, 0.5, 1.0]),
+         "front_mass": ("front", [0.006] * 3), "front_censored": ("front", [0, 2, 0]),
+         "design_balance_time": ("design", times.mean(axis=1)),
+         "design_censored": ("design", np.isnan(times).sum(axis=1)),
+         "design_times": (("design", "position"), times),
+         "design_force": ("design", [65.0, 95.0]),
+         "design_beta": ("design", [0.4, 0.2]), "design_mass": ("design", [0.01] * 2)},
+        coords={"design": [1, 2]}, attrs={"kinematics": "printed"})
+    assert np.isnan(ds.design_balance_time[1]) and gap_to_front(ds)[0] == 0.0  # the 60 N design has no mean
+    (row,) = pareto_rows(ds)
+    assert row.holds == (("", None),) and "1 of 4" in row.explanation
+    assert verdict(None, None, holds=row.holds) == (None, "UNDETERMINED")

@@ -305,7 +305,10 @@ def pareto(pareto, paper):
     fig, (ax1, ax2) = figure(1, 2, figsize=(12.0, 4.8))
     order = np.argsort(pareto.front_force.values)
     t, f = pareto.front_balance_time.values[order], pareto.front_force.values[order]
-    ax1.plot(f, t, "o-", color="C0", ms=4, lw=0.8, label="NSGA-II front")
+    censored = int((pareto.front_censored > 0).sum())
+    ax1.plot(f, t, "o-", color="C0", ms=4, lw=0.8,
+             label="NSGA-II front" + (f" ({censored} designs with a run not balanced by "
+                                      "t_end: no mean, not drawn)" if censored else ""))
     for i, row in enumerate(pareto.design.values):
         label = (f"Table 2 row {int(row)}: beta = {float(pareto.design_beta[i]):g}, "
                  f"m = {1e3 * float(pareto.design_mass[i]):g} g")
