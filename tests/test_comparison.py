@@ -1,7 +1,8 @@
 import pytest
 
 from rotorvib.comparison import (Reproduced, build_table, claim_verdict, merge_variants,
-                                 read_reproduced, verdict, write_reproduced)
+                                 read_reproduced, totals, verdict, with_findings,
+                                 write_reproduced)
 
 
 @pytest.mark.parametrize("paper, reproduced, rel, word", [
@@ -84,3 +85,24 @@ def test_table_joins_and_requires_explanations():
         build_table(_values(), [Reproduced.of("C", "q", 1.0, ""),
                                 Reproduced.claim("C", "claim", True, "x"),
                                 Reproduced.of("C", "other", 1.0, "x")])
+
+
+def test_a_finding_is_one_cause_however_many_rows_show_it():
+    """Rows of one paper and verdict whose explanations differ only in their numbers are one
+    finding; another verdict, paper or wording is another; a row without explanation is its
+    own."""
+    def row(paper, quantity, verdict, explanation):
+        return {"paper": paper, "quantity": quantity, "verdict": verdict,
+                "explanation": explanation}
+
+    rows = with_findings([
+        row("B", "m1", "MATCH", "GA optimum mass at the lower bound (beta = 0.12, 5.41 s)"),
+        row("B", "m2", "MATCH", "GA optimum mass at the lower bound (beta = 0.2, 6.1e-1 s)"),
+        row("B", "m3", "MAJOR", "GA optimum mass at the lower bound (beta = 0.3, 5 s)"),
+        row("B", "m4", "MATCH", "GA optimum mass inside the bounds (beta = 0.3, 5 s)"),
+        row("C", "c1", "MATCH", "GA optimum mass at the lower bound (beta = 0.12, 5.41 s)"),
+        row("C", "c2", "MATCH", ""), row("C", "c3", "MATCH", "")])
+    assert [r["finding"] for r in rows] == ["B1", "B1", "B2", "B3", "C1", "C2", "C3"]
+    table = [{**r, "paper_value": 1.0, "source": "printed"} for r in rows]
+    assert totals(table)[0] == ("printed numbers (7 rows, 6 findings): MATCH 6 (5 findings), "
+                                "MINOR 0, MAJOR 1 (1 finding), PAPER-INCONSISTENT 0")

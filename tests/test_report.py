@@ -6,6 +6,7 @@ import pytest
 from docutils.core import publish_parts
 from docutils.utils import Reporter
 
+from rotorvib.comparison import with_findings
 from rotorvib.pipeline import report
 
 # Snakemake appends link targets for each category to every caption and to the landing page.
@@ -111,31 +112,35 @@ def test_a_caption_file_renders_as_written(tmp_path):
 
 
 def test_the_summary_and_the_landing_page_follow_the_rows():
-    table = [row(paper="A", verdict="MATCH", quantity="a1", item="Fig 2"),
-             row(paper="B", verdict="MAJOR", quantity="b1", rel_error="0.2",
-                 explanation="first clause; second"),
-             row(paper="B", verdict="MAJOR", quantity="b2", rel_error="0.5",
-                 explanation="eq. (20) gives 3. Then more"),
-             row(paper="B", verdict="NOT SUPPORTED", quantity="b3", item="Fig 6",
-                 paper_value="", reproduced="", rel_error="",
-                 explanation="not under printed, consistent: printed: share 0.3 | consistent: "
-                             "share 0.4")]
+    """One bullet per finding (rows of one cause: the same explanation but for its numbers),
+    its largest miss stated whole; totals count rows and findings."""
+    table = with_findings([
+        row(paper="A", verdict="MATCH", quantity="a1", item="Fig 2"),
+        row(paper="B", verdict="MAJOR", quantity="b1", rel_error="0.2",
+            explanation="eq. (20) gives 2. Then more"),
+        row(paper="B", verdict="MAJOR", quantity="b2", rel_error="0.5", item="Fig 9",
+            explanation="eq. (20) gives 3. Then more"),
+        row(paper="B", verdict="NOT SUPPORTED", quantity="b3", item="Fig 6",
+            paper_value="", reproduced="", rel_error="",
+            explanation="not under printed, consistent: printed: share 0.3 | consistent: "
+                        "share 0.4")])
     papers = {p: {"title": f"Title {p}", "citation": f"Citation {p}.", "summary": f"Summary {p}."}
               for p in "ABC"}
     body = html(report.summary_text(table, {("B", "b2"): "the b2 claim"}, papers,
                                     "discrepancies (1)"))
     counts = report.verdict_counts(table)
     assert counts["B"]["MAJOR"] == 2 and counts["A"]["MATCH"] == 1
-    assert "<strong>Paper B, Fig 8 (2 MAJOR)</strong> the b2 claim: paper 9.04 s, reproduced " \
-           "5.98 s (50.0 % off). eq. (20) gives 3. Then more" in body  # the larger miss, whole
-    assert "first clause" not in body
-    assert "<strong>Paper B, Fig 6 (1 NOT SUPPORTED)</strong> b3. not under printed, " \
-           "consistent: printed: share 0.3; consistent: share 0.4" in body  # its numbers kept
-    assert "Paper A, Fig 2" not in body  # a MATCH is not a finding
+    assert "<strong>Paper B, finding B1: Fig 8, Fig 9 (2 rows, MAJOR)</strong> the b2 claim: " \
+           "paper 9.04 s, reproduced 5.98 s (50.0 % off). eq. (20) gives 3. Then more" in body
+    assert "gives 2" not in body                      # one bullet for the two rows
+    assert "<strong>Paper B, finding B2: Fig 6 (1 row, NOT SUPPORTED)</strong> b3. not under " \
+           "printed, consistent: printed: share 0.3; consistent: share 0.4" in body
+    assert "Paper A" not in body.split("Findings")[1].split("Papers")[0]  # a MATCH is none
     assert "Citation C. Summary C." in body and "discrepancies (1)" in body
     landing = html(report.landing_page(table, papers))
     assert "4 stated values and claims" in landing
-    assert "printed numbers (3): MATCH 1, MINOR 0, MAJOR 2" in landing
+    assert ("printed numbers (3 rows, 2 findings): MATCH 1 (1 finding), MINOR 0, MAJOR 2 "
+            "(1 finding)") in landing
     assert "Title C" in landing and "Citation C" not in landing
     assert landing.count("javascript:app.showCategory") == 5  # summary, comparison, papers
 

@@ -21,13 +21,14 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
 from rotorvib.io.tables import write_table
 
 COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reproduced",
-           "rel_error", "verdict", "explanation")
+           "rel_error", "verdict", "finding", "explanation")
 SOURCES = ("printed", "chosen", "theory")
 MATCH_TOL = 0.01
 MINOR_TOL = 0.10
@@ -238,7 +239,29 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
                       "unit": p["unit"], "source": p["source"], "paper_value": p["value"],
                       "reproduced": r.reproduced, "rel_error": rel, "verdict": verdict_,
                       "explanation": explanation})
-    return table
+    return with_findings(table)
+
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def with_findings(table: list[dict]) -> list[dict]:
+    """Each row with the finding it belongs to (``finding``: the paper's letter and a number
+    in order of first appearance).  A finding is one cause: the rows of one paper with one
+    verdict whose explanations are the same but for their numbers (the GA's optimum mass on
+    its lower bound, for each of nine GAs, is one finding); a row without an explanation is a
+    finding of its own."""
+    ids: dict[tuple, str] = {}
+    per_paper: dict[str, int] = {}
+    rows = []
+    for row in table:
+        cause = _NUMBER.sub("#", row["explanation"]) or row["quantity"]
+        key = (row["paper"], row["verdict"], cause)
+        if key not in ids:
+            per_paper[row["paper"]] = per_paper.get(row["paper"], 0) + 1
+            ids[key] = f"{row['paper']}{per_paper[row['paper']]}"
+        rows.append({**row, "finding": ids[key]})
+    return rows
 
 
 def paper_values_of(path: str | Path, paper: str) -> dict[str, float | None]:
@@ -255,15 +278,23 @@ def group_of(row: dict) -> str:
 
 
 def totals(table: list[dict]) -> list[str]:
-    """Verdict counts in three groups: printed numbers, chosen/theoretical values, claims (a
-    number's UNDETERMINED, nothing to compare, is named only where there is one)."""
+    """Verdict counts of rows and of distinct findings (:func:`with_findings`) in three groups:
+    printed numbers, chosen/theoretical values, claims (a number's UNDETERMINED, nothing to
+    compare, is named only where there is one), e.g. ``"MATCH 20 (6 findings)"``."""
     lines = []
     for name, verdicts in VERDICT_GROUPS:
-        group = [row["verdict"] for row in table if group_of(row) == name]
-        shown = [v for v in verdicts if v != UNDETERMINED or name == "claims" or v in group]
-        lines.append(f"{name} ({len(group)}): "
-                     + ", ".join(f"{v} {group.count(v)}" for v in shown))
+        group = [row for row in table if group_of(row) == name]
+        found = {v: {r["finding"] for r in group if r["verdict"] == v} for v in verdicts}
+        counts = {v: sum(r["verdict"] == v for r in group) for v in verdicts}
+        shown = [v for v in verdicts if v != UNDETERMINED or name == "claims" or counts[v]]
+        lines.append(f"{name} ({len(group)} rows, {_findings(set().union(*found.values()))}): "
+                     + ", ".join(f"{v} {counts[v]}" + (f" ({_findings(found[v])})"
+                                                      if counts[v] else "") for v in shown))
     return lines
+
+
+def _findings(ids: set) -> str:
+    return f"{len(ids)} finding{'' if len(ids) == 1 else 's'}"
 
 
 def verdict_definitions() -> str:

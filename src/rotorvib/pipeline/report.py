@@ -197,19 +197,22 @@ def totals_table(table: list[dict]) -> list[str]:
 
 
 def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]:
-    """The disagreements, grouped by paper and item: one bullet each, with its verdict counts
-    and its largest miss (the first row where no number is printed), stated as in a caption,
-    with the whole explanation (a clause cut short loses its numbers)."""
-    groups: dict[tuple[str, str], list[dict]] = {}
+    """The disagreements, one bullet per finding (rotorvib.comparison.with_findings: one cause,
+    however many rows show it), naming the items and rows it covers and stating its largest
+    miss (the first row where no number is printed) as in a caption, with the whole
+    explanation (a clause cut short loses its numbers)."""
+    groups: dict[str, list[dict]] = {}
     for row in table:
         if row["verdict"] in FINDINGS:
-            groups.setdefault((row["paper"], row["item"]), []).append(row)
+            groups.setdefault(row["finding"], []).append(row)
     lines = []
-    for (paper, item), rows in sorted(groups.items(), key=lambda group: group[0][0]):
-        verdicts = ", ".join(f"{n} {v}" for v, n in sorted(Counter(r["verdict"] for r in rows).items()))
+    for finding, rows in sorted(groups.items(), key=lambda group: group[1][0]["paper"]):
+        items = ", ".join(dict.fromkeys(r["item"] for r in rows))
+        count = f"{len(rows)} rows" if len(rows) > 1 else "1 row"
         worst = max(rows, key=lambda r: float(r["rel_error"] or -1))
         lines.append(statement(worst, claims.get((worst["paper"], worst["quantity"]), ""),
-                               lead=f"Paper {paper}, {item} ({verdicts})"))
+                               lead=f"Paper {rows[0]['paper']}, finding {finding}: {items} "
+                                    f"({count}, {rows[0]['verdict']})"))
     return lines
 
 
