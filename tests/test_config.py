@@ -4,9 +4,8 @@ import pytest
 import yaml
 
 from conftest import ROOT
-from rotorvib.pipeline import config as config_module
-from rotorvib.pipeline import strict_yaml
 from rotorvib.io.provenance import config_hash
+from rotorvib.pipeline import strict_yaml
 from rotorvib.pipeline.config import ConfigError, main, merge, validate_config
 
 
