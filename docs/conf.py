@@ -18,6 +18,9 @@ exclude_patterns = ["_build", "_generated"]
 myst_heading_anchors = 3
 myst_enable_extensions = ["dollarmath"]
 html_theme = "alabaster"
+# the configuration reference is a wide table: use the window's width
+html_theme_options = {"page_width": "95%", "body_max_width": "none"}
+html_static_path = ["_static"]      # custom.css: long keys wrap inside their cells
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
 

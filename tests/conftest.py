@@ -81,3 +81,11 @@ def cf_check(*paths):
     run = subprocess.run([str(checker), "--test", "cf:1.11", "--criteria", "normal",
                           *map(str, paths)], capture_output=True, text=True)
     return run.returncode == 0, run.stdout
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """Headless Chromium through Playwright (tests/report_browser.py)."""
+    from report_browser import chromium
+
+    yield from chromium()

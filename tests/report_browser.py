@@ -6,8 +6,11 @@ what these functions return."""
 from __future__ import annotations
 
 import os
+import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
+
+import pytest
 
 SIZES = ((1280, 800), (1400, 1000), (1920, 1080))
 # Where the landing page's screenshots go: $REPORT_SCREENSHOTS (.ci/run sets it), else
@@ -125,3 +128,23 @@ def every_view(browser, report: Path) -> tuple[list[str], list[View], dict[str, 
                 views.append(_shown(page, (category, sub, label), errors))
     page.close()
     return categories, views, lists
+
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+
+
+def chromium():
+    """Headless Chromium (Debian's package, installed by .ci/run) driven by Playwright, for a
+    fixture to yield; a test skips (fails under CI) where Chromium is missing."""
+    if CHROMIUM is None:
+        if os.environ.get("CI"):
+            pytest.fail("Chromium is missing: .ci/run installs Debian's chromium package")
+        pytest.skip("no Chromium on this machine (Debian package chromium)")
+    from playwright.sync_api import sync_playwright
+    with sync_playwright() as playwright:
+        launched = playwright.chromium.launch(
+            executable_path=CHROMIUM,
+            args=["--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                  "--disable-component-update", "--disable-sync", "--no-first-run"])
+        yield launched
+        launched.close()

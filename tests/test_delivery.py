@@ -4,9 +4,7 @@ restoration without recomputation."""
 
 import csv
 import html
-import os
 import re
-import shutil
 import tarfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -21,26 +19,6 @@ from rotorvib.pipeline.archive import verify_archive
 from workflow_runs import REDUCED, copy_repository, copy_run, planned_jobs, snakemake
 
 pytestmark = pytest.mark.workflow
-
-
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-
-
-@pytest.fixture(scope="module")
-def browser():
-    """Headless Chromium (Debian's package, installed by .ci/run) driven by Playwright."""
-    if CHROMIUM is None:
-        if os.environ.get("CI"):
-            pytest.fail("Chromium is missing: .ci/run installs Debian's chromium package")
-        pytest.skip("no Chromium on this machine (Debian package chromium)")
-    from playwright.sync_api import sync_playwright
-    with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(
-            executable_path=CHROMIUM,
-            args=["--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                  "--disable-component-update", "--disable-sync", "--no-first-run"])
-        yield chromium
-        chromium.close()
 
 
 @pytest.fixture(scope="module")

@@ -81,3 +81,29 @@ def test_following_fig8_names_the_files_and_modules_a_reader_crosses():
     assert listed("the figure") == loaded(str(ROOT / "workflow/scripts/figures.py"),
                                           "rotorvib.papers.b.figures")
     assert '"fig8": figure("balance_against", {"study": "balance_beta"}' in walk
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("docs")
+    subprocess.run([str(Path(sys.executable).parent / "sphinx-build"), "-q", "-b", "html",
+                    str(DOCS), str(out)], check=True, capture_output=True, timeout=600)
+    return out
+
+
+def test_every_page_fits_the_window_and_every_link_leads_somewhere(site, browser):
+    """Each page of the built site, opened at 1280 px: nothing wider than the window (the
+    configuration reference is a wide table), and every link inside the site reaches a page
+    that exists (links are checked offline)."""
+    pages = sorted(p for p in site.glob("*.html") if p.name not in ("genindex.html",
+                                                                    "search.html"))
+    assert len(pages) >= 8
+    view = browser.new_page(viewport={"width": 1280, "height": 900})
+    for page in pages:
+        view.goto(page.as_uri())
+        assert view.evaluate("document.documentElement.scrollWidth") <= 1280, page.name
+        links = view.eval_on_selector_all("a[href]", "links => links.map(a => a.href)")
+        local = [href.split("#")[0] for href in links if href.startswith("file://")]
+        missing = [href for href in local if not Path(href.removeprefix("file://")).exists()]
+        assert not missing, (page.name, missing)
+    view.close()
