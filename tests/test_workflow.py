@@ -253,3 +253,16 @@ def test_lint_and_format_are_clean():
     fmt = subprocess.run([str(BIN / "snakefmt"), "--check", "."], cwd=ROOT, capture_output=True,
                          text=True)
     assert fmt.returncode == 0, fmt.stdout + fmt.stderr
+
+
+def test_the_reduced_configuration_writes_to_its_own_folder():
+    """config/test/config.yaml as the README gives it never touches the paper configuration's
+    results: every output it plans lies under results/reduced/."""
+    run = subprocess.run([str(BIN / "snakemake"), "--summary", "--configfile",
+                          "config/config.yaml", "config/test/config.yaml"], cwd=ROOT,
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    outputs = [line.split("\t")[0] for line in run.stdout.splitlines()[1:] if "\t" in line]
+    assert len(outputs) > 100
+    assert all(path.startswith("results/reduced/") for path in outputs), [
+        p for p in outputs if not p.startswith("results/reduced/")][:5]

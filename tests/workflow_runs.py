@@ -25,7 +25,9 @@ from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, fixed_pa
 from rotorvib.models.balancer.simulate import BalanceCriterion, run_batch
 
 BIN = Path(sys.executable).parent
-REDUCED = ["--configfile", "config/config.yaml", "config/test/config.yaml"]
+#: The reduced configuration, its outputs under results/ (tests/config/results_at_root.yaml).
+REDUCED = ["--configfile", "config/config.yaml", "config/test/config.yaml",
+           "tests/config/results_at_root.yaml"]
 RECORDER = ROOT / "tests/oracles/job_recorder"
 RECORDS = "job_records"
 

@@ -5,7 +5,10 @@
 # report is rebuilt from a restored archive by `snakemake --report`.
 from rotorvib.io.provenance import git_state
 
-RUN_RECORD = {"config": "results/run/config.yaml", "commit": "results/run/commit.txt"}
+RUN_RECORD = {
+    "config": f"{RESULTS_DIR}/run/config.yaml",
+    "commit": f"{RESULTS_DIR}/run/commit.txt",
+}
 
 
 rule run_record:
@@ -30,7 +33,7 @@ rule archive:
         configuration=list(RUN_RECORD.values()) + configuration_files(),
         code=["Snakefile", "LICENSE", "CITATION.cff"],
     output:
-        "results/archive/rotorvib-results.tar.gz",
+        f"{RESULTS_DIR}/archive/rotorvib-results.tar.gz",
     log:
         logs("archive"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.

@@ -42,6 +42,16 @@ except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
+# Where every output goes: results/ for the paper configuration, its own folder for another
+# (config key `results`; the reduced configuration writes to results/reduced).
+RESULTS_DIR = config["results"]
+
+
+def reproduced_file(paper):
+    """The reproduced values of a paper's stated quantities."""
+    return f"{RESULTS_DIR}/paper_{paper}/reproduced.csv"
+
+
 # Scheduling: every job runs one thread (a batch study's second thread gains less than a second
 # job beside it on a few cores; workflow/profiles/slurm gives paper B's batch studies more), and
 # long jobs start first so that short ones fill the gaps at the end (`priority`): paper B's
@@ -52,31 +62,31 @@ A, B, C = (config[f"paper_{paper}"] for paper in "abc")
 # chain; then every other job that computes; then the figures and tables (local rules, 0).
 BESIDE_THE_COMPILE, LONGEST_CHAIN, COMPUTES = 3, 2, 1
 PAPER_VALUES = "data/paper_values.csv"
-REPORT_DIR = "results/report"
+REPORT_DIR = f"{RESULTS_DIR}/report"
 REPORT_LANDING = f"{REPORT_DIR}/landing.rst"
 
 
 def dataset(paper, name):
     """Path of dataset ``name`` of ``paper`` ("a", "b" or "c")."""
-    return f"results/paper_{paper}/datasets/{name}.nc"
+    return f"{RESULTS_DIR}/paper_{paper}/datasets/{name}.nc"
 
 
 def table(paper, name, ext):
-    return f"results/paper_{paper}/tables/{name}.{ext}"
+    return f"{RESULTS_DIR}/paper_{paper}/tables/{name}.{ext}"
 
 
 def figure_file(paper, name, ext="png"):
     """A figure's PNG, its vector copy (svg), or what it draws and depends on (json, for its
     caption; rotorvib.io.plotting)."""
-    return f"results/paper_{paper}/figures/{name}.{ext}"
+    return f"{RESULTS_DIR}/paper_{paper}/figures/{name}.{ext}"
 
 
 def logs(name):
-    return f"results/logs/{name}.log"
+    return f"{RESULTS_DIR}/logs/{name}.log"
 
 
 def benchmarks(name):
-    return f"results/benchmarks/{name}.tsv"
+    return f"{RESULTS_DIR}/benchmarks/{name}.tsv"
 
 
 # Figures of each paper, filled by the paper's .smk and drawn by the figure jobs (figures.smk);
@@ -203,7 +213,7 @@ def all_results():
     return (
         files
         + [
-            f"results/{name}.{ext}"
+            f"{RESULTS_DIR}/{name}.{ext}"
             for name in ("comparison", "discrepancies")
             for ext in ("csv", "md")
         ]
@@ -243,7 +253,7 @@ def results_of(paper, datasets, tables=()):
         [figure_file(paper, name) for name in FIGURES[paper]]
         + [dataset(paper, name) for name in datasets]
         + [table(paper, name, ext) for name in tables for ext in ("csv", "md")]
-        + [f"results/paper_{paper}/reproduced.csv"]
+        + [reproduced_file(paper)]
     )
 
 

@@ -21,9 +21,9 @@ rule comparison:
             "Every value and claim the papers state (data/paper_values.csv) beside the "
             "reproduced value, with the relative error, the verdict and the explanation "
             "of each difference.",
-            path="results/comparison.csv",
+            path=f"{RESULTS_DIR}/comparison.csv",
         ),
-        md="results/comparison.md",
+        md=f"{RESULTS_DIR}/comparison.md",
         discrepancies_csv=report_table(
             "all",
             "discrepancies",
@@ -32,9 +32,9 @@ rule comparison:
             "rounding): the value each hypothesis gives and whether it reproduces the "
             "printed one (within the MATCH tolerance); an inversion gives the single "
             "parameter value that would.",
-            path="results/discrepancies.csv",
+            path=f"{RESULTS_DIR}/discrepancies.csv",
         ),
-        discrepancies_md="results/discrepancies.md",
+        discrepancies_md=f"{RESULTS_DIR}/discrepancies.md",
     log:
         logs("comparison"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.

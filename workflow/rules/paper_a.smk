@@ -156,7 +156,7 @@ rule a_reproduced_values:
         err=rules.a_error_study.output[0],
         paper_values=PAPER_VALUES,
     output:
-        "results/paper_a/reproduced.csv",
+        reproduced_file("a"),
     log:
         logs("a_reproduced_values"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.

@@ -481,7 +481,7 @@ rule b_reproduced_values:
         pareto=rules.b_pareto.output[0],
         paper_values=PAPER_VALUES,
     output:
-        "results/paper_b/reproduced.csv",
+        reproduced_file("b"),
     log:
         logs("b_reproduced_values"),
     priority: LONGEST_CHAIN

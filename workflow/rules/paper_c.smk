@@ -322,7 +322,7 @@ rule c_reproduced_values:
         uncertainty=rules.c_uncertainty.output[0],
         paper_values=PAPER_VALUES,
     output:
-        "results/paper_c/reproduced.csv",
+        reproduced_file("c"),
     log:
         logs("c_reproduced_values"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.

@@ -6,8 +6,8 @@
 
 rule report_text:
     input:
-        comparison="results/comparison.csv",
-        discrepancies="results/discrepancies.csv",
+        comparison=f"{RESULTS_DIR}/comparison.csv",
+        discrepancies=f"{RESULTS_DIR}/discrepancies.csv",
         paper_values=PAPER_VALUES,
         papers="data/papers.yaml",
         tables=[d["csv"] for paper in TABLES for d in TABLES[paper].values()],

@@ -3,6 +3,8 @@ RO-Crate describing the run."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
+from pathlib import Path
+
 import snakemake as snakemake_package
 
 from rotorvib.pipeline.archive import make_archive
@@ -17,6 +19,7 @@ crate = crate_metadata(
     title="rotorvib: reproductions of three rotor-dynamics papers",
     description="Every dataset (CF-1.11 netCDF), table and figure of one run of the rotorvib "
                 "workflow, the words and pages of its report, the run's configuration and commit.",
-    snakemake_version=snakemake_package.__version__)
+    snakemake_version=snakemake_package.__version__,
+    results_dir=Path(snakemake.output[0]).parents[1].as_posix())  # <results>/archive/...
 make_archive(list(inputs.results) + list(inputs.configuration) + list(inputs.code),
              snakemake.output[0], generated={CRATE: crate})

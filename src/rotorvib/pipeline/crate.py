@@ -40,26 +40,26 @@ SNAKEMAKE_PAGES = {"https://doi.org/10.1093/bioinformatics/bts480": "Snakemake's
 #: Descriptions by path pattern, first match wins; {paper}, {name}, {ext} and {title} (a
 #: dataset's own title attribute) are filled in.
 DESCRIPTIONS = (
-    (r"results/paper_(?P<paper>\w)/datasets/(?P<name>\w+)\.nc", "Dataset: {title}"),
-    (r"results/paper_(?P<paper>\w)/figures/(?P<name>\w+)\.png", "Paper {paper}, {figure}"),
-    (r"results/paper_(?P<paper>\w)/figures/(?P<name>\w+)\.svg",
+    (r"paper_(?P<paper>\w)/datasets/(?P<name>\w+)\.nc", "Dataset: {title}"),
+    (r"paper_(?P<paper>\w)/figures/(?P<name>\w+)\.png", "Paper {paper}, {figure}"),
+    (r"paper_(?P<paper>\w)/figures/(?P<name>\w+)\.svg",
      "Paper {paper}, {figure}: vector copy"),
-    (r"results/paper_(?P<paper>\w)/figures/(?P<name>\w+)\.json",
+    (r"paper_(?P<paper>\w)/figures/(?P<name>\w+)\.json",
      "Paper {paper}, {figure}: what it draws and the parameters it depends on (its caption)"),
-    (r"results/paper_(?P<paper>\w)/tables/(?P<name>\w+)\.(?P<ext>\w+)",
+    (r"paper_(?P<paper>\w)/tables/(?P<name>\w+)\.(?P<ext>\w+)",
      "Paper {paper}, {table} ({ext})"),
-    (r"results/paper_(?P<paper>\w)/reproduced\.csv",
+    (r"paper_(?P<paper>\w)/reproduced\.csv",
      "Paper {paper}: the reproduced value of every quantity the paper states"),
-    (r"results/comparison\.\w+", "Every value the papers state beside the reproduced one, with "
+    (r"comparison\.\w+", "Every value the papers state beside the reproduced one, with "
      "the relative error, the verdict and the explanation"),
-    (r"results/discrepancies\.\w+", "Each printed number the reproduction misses, tested "
+    (r"discrepancies\.\w+", "Each printed number the reproduction misses, tested "
      "against alternative readings of the paper"),
-    (r"results/report/.+\.rst", "Words of the HTML report, written from the comparison"),
-    (r"results/report/pages/.+\.html", "A page of the HTML report (its summary or a table), "
+    (r"report/.+\.rst", "Words of the HTML report, written from the comparison"),
+    (r"report/pages/.+\.html", "A page of the HTML report (its summary or a table), "
      "written from the comparison"),
-    (r"results/report/shown/.+", "A file the HTML report shows (a copy)"),
-    (r"results/run/config\.yaml", "The run's whole configuration (files and overrides merged)"),
-    (r"results/run/commit\.txt", "The commit of the code that made the results"),
+    (r"report/shown/.+", "A file the HTML report shows (a copy)"),
+    (r"run/config\.yaml", "The run's whole configuration (files and overrides merged)"),
+    (r"run/commit\.txt", "The commit of the code that made the results"),
     (r"config/.+\.yaml", "A configuration file the run read"),
     (r"Snakefile", "The workflow: snakemake -j2 rebuilds every result"),
     (r"LICENSE", "The licences: MIT for the code, CC-BY-4.0 for the data"),
@@ -67,10 +67,12 @@ DESCRIPTIONS = (
 )
 
 
-def describe(path: str) -> str:
-    """A one-line description of an archived file, from :data:`DESCRIPTIONS`."""
+def describe(path: str, results: str = "results") -> str:
+    """A one-line description of an archived file, from :data:`DESCRIPTIONS` (whose patterns
+    name outputs relative to the run's ``results`` folder)."""
+    relative = path.removeprefix(f"{results}/")
     for pattern, text in DESCRIPTIONS:
-        if match := re.fullmatch(pattern, path):
+        if match := re.fullmatch(pattern, relative):
             fields = match.groupdict()
             if "paper" in fields:
                 fields["paper"] = fields["paper"].upper()
@@ -97,14 +99,15 @@ def file_properties(path: str | Path, description: str, licence: str | None = No
 
 
 def crate_metadata(*, results: list[str], configuration: list[str], code: list[str],
-                   title: str, description: str, date: str, snakemake_version: str) -> str:
+                   title: str, description: str, date: str, snakemake_version: str,
+                   results_dir: str = "results") -> str:
     """``ro-crate-metadata.json`` for an archive whose root is the repository root.
 
-    ``results``: the run's outputs (data licence); ``configuration``: the files the run read
-    (its ``object``); ``code``: the Snakefile first, then the licence and citation files (code
-    licence). Each file is described by :func:`describe`.
+    ``results``: the run's outputs (data licence), under ``results_dir``; ``configuration``:
+    the files the run read (its ``object``); ``code``: the Snakefile first, then the licence
+    and citation files (code licence). Each file is described by :func:`describe`.
     """
-    results, configuration, code = ({p: describe(p) for p in files}
+    results, configuration, code = ({p: describe(p, results_dir) for p in files}
                                      for files in (results, configuration, code))
     crate = ROCrate()
     main, *others = code
