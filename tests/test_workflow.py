@@ -21,7 +21,8 @@ from conftest import ROOT, cf_check
 from forked_snakemake import ForkedSnakemake
 from rotorvib.comparison import read_paper_values
 from workflow_runs import (BIN, REDUCED, copy_run, digests, environment, job_records,
-                           planned_outputs, run_block_jobs, snakemake, to_update)
+                           planned_outputs, run_block_jobs, snakemake, summary_rows,
+                           to_update)
 
 pytestmark = pytest.mark.workflow
 
@@ -262,7 +263,7 @@ def test_the_reduced_configuration_writes_to_its_own_folder():
                           "config/config.yaml", "config/test/config.yaml"], cwd=ROOT,
                          capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr
-    outputs = [line.split("\t")[0] for line in run.stdout.splitlines()[1:] if "\t" in line]
+    outputs = [row["output_file"] for row in summary_rows(run.stdout)]
     assert len(outputs) > 100
     assert all(path.startswith("results/reduced/") for path in outputs), [
         p for p in outputs if not p.startswith("results/reduced/")][:5]

@@ -95,12 +95,16 @@ def planned_outputs(cwd: Path, *args, command=None) -> set[str]:
     return to_update(run.stdout)
 
 
-def to_update(summary: str) -> set[str]:
-    """The output files of a ``--summary`` table whose plan is not 'no update'."""
+def summary_rows(summary: str) -> list[dict]:
+    """The rows of a ``--summary`` or ``--detailed-summary`` table, by column name."""
     lines = summary.splitlines()
     header = lines[0].split("\t")
-    rows = [dict(zip(header, line.split("\t"))) for line in lines[1:] if "\t" in line]
-    return {row["output_file"] for row in rows if row["plan"] != "no update"}
+    return [dict(zip(header, line.split("\t"))) for line in lines[1:] if "\t" in line]
+
+
+def to_update(summary: str) -> set[str]:
+    """The output files of a ``--summary`` table whose plan is not 'no update'."""
+    return {row["output_file"] for row in summary_rows(summary) if row["plan"] != "no update"}
 
 
 def job_records(cwd: Path) -> list[dict]:
@@ -113,13 +117,10 @@ def run_block_jobs(cwd: Path, recorded: list[dict]) -> list[dict]:
     as job records from Snakemake's ``--detailed-summary`` of the run; they load no library
     module of their own."""
     run = snakemake(cwd, "--detailed-summary", *REDUCED)
-    lines = run.stdout.splitlines()
-    header = lines[0].split("\t")
     seen = {r["rule"] for r in recorded}
     jobs: dict[str, dict] = {}
-    for line in lines[1:]:
-        row = dict(zip(header, line.split("\t")))
-        if "\t" not in line or row["rule"] in seen or row["rule"] == "-":
+    for row in summary_rows(run.stdout):
+        if row["rule"] in seen or row["rule"] == "-":
             continue
         job = jobs.setdefault(row["rule"], {"rule": row["rule"], "output": [], "modules": [],
                                             "input": row["input-file(s)"].split(",")})

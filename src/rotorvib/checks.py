@@ -61,6 +61,21 @@ def integer(name: str, value, minimum: int) -> int:
     return int(value)
 
 
+def flag(name: str, value) -> bool:
+    """``value`` as a bool; ``ValueError`` for anything but ``True`` or ``False``."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} = {value!r}: must be True or False")
+    return bool(value)
+
+
+def instance(name: str, value, kind: type, *, optional: bool = False):
+    """``value`` itself; ``ValueError`` unless it is a ``kind`` (or None, if ``optional``)."""
+    if (value is None and optional) or isinstance(value, kind):
+        return value
+    raise ValueError(f"{name} = {value!r}: must be a {kind.__name__}"
+                     f"{' or None' if optional else ''}")
+
+
 def sobol_design_problem(n_base, convergence) -> str | None:
     """Why a Saltelli design of ``n_base`` base points, shown at the sizes ``convergence``,
     cannot be run (None if it can): every size a power of 2, none above ``n_base``."""

@@ -15,7 +15,7 @@ import numbers
 
 import numpy as np
 
-from rotorvib.checks import finite_array, integer
+from rotorvib.checks import finite_array
 from rotorvib.models.balancer import engine, kinematics, limits
 
 #: Balls of a balancer at most (a state of 2 (n + 2) entries); paper A and B have two.
@@ -95,29 +95,6 @@ def samples(t_end: float, sample_dt: float) -> int:
     if problem := limits.samples_problem(t_end, sample_dt):
         raise ValueError(f"t_end / sample_dt = {t_end!r} / {sample_dt!r}: {problem}")
     return limits.samples(t_end, sample_dt)
-
-
-def chunk(value) -> int:
-    return integer("chunk", value, 1)
-
-
-def seed(value) -> int:
-    return integer("seed", value, 0)
-
-
-def flag(name: str, value) -> bool:
-    """``value`` as a bool; ``ValueError`` for anything but ``True`` or ``False``."""
-    if not isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} = {value!r}: must be True or False")
-    return bool(value)
-
-
-def instance(name: str, value, kind: type, *, optional: bool = False):
-    """``value`` itself; ``ValueError`` unless it is a ``kind`` (or None, if ``optional``)."""
-    if (value is None and optional) or isinstance(value, kind):
-        return value
-    raise ValueError(f"{name} = {value!r}: must be a {kind.__name__}"
-                     f"{' or None' if optional else ''}")
 
 
 def fastest_rate(form_code: int, params: np.ndarray) -> np.ndarray:

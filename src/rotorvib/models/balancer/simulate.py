@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorvib.checks import finite_array, number
+from rotorvib.checks import finite_array, flag, instance, integer, number
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.methods.numba_cache import compile_lock, record
 from rotorvib.models.balancer import analysers, dop853, engine, inputs, settling
@@ -155,7 +155,7 @@ def _checked(form, params, y0s, criterion, rtol, atol, names=("params", "y0s")):
     """The form code and the parameter and state rows of a run or batch, checked
     (:mod:`inputs`) with the criterion and tolerances: ``ValueError`` naming the argument."""
     form = inputs.form(form)
-    inputs.instance("criterion", criterion, BalanceCriterion)
+    instance("criterion", criterion, BalanceCriterion)
     check_tolerances(rtol, atol)
     params = inputs.parameter_rows(form, params, names[0])
     inputs.work(form, params, criterion.t_end, names[0])
@@ -189,7 +189,7 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     p, y0 = finite_array("p", p, shape=(None,)), finite_array("y0", y0, shape=(None,))
     form, params, states = _checked(form, p[None], y0[None], criterion, rtol, atol,
                                     names=("p", "y0"))
-    inputs.flag("store", store)
+    flag("store", store)
     integrate, tableau = _integrator(method)
     c = criterion
     out = np.empty((c.n_samples if store else 0, states.shape[1]))
@@ -212,8 +212,8 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
     the balance criterion).  Returns a :class:`RunResult`, or a :class:`Trajectory` with
     ``store=True``.  Raises ``ValueError`` naming an argument out of range: ``b`` and
     ``profile`` check their own fields, the rest is checked here and by :func:`run`."""
-    inputs.instance("b", b, Balancer)
-    inputs.instance("profile", profile, SpeedProfile)
+    instance("b", b, Balancer)
+    instance("profile", profile, SpeedProfile)
     y0 = fixed_state(b.n, r0=number("r0", r0, inclusive=True),
                      theta0=number("theta0", theta0, minimum=-np.inf),
                      phi0=finite_array("phi0", phi0, shape=(b.n,)))
@@ -244,9 +244,9 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     """
     c = criterion
     form, params, y0s = _checked(form, params, y0s, criterion, rtol, atol)
-    inputs.instance("stop", stop, settling.StopRule, optional=True)
-    seed, chunk = inputs.seed(seed), inputs.chunk(chunk)
-    progress = inputs.flag("progress", progress)
+    instance("stop", stop, settling.StopRule, optional=True)
+    seed, chunk = integer("seed", seed, 0), integer("chunk", chunk, 1)
+    progress = flag("progress", progress)
     integrate, tableau = _integrator(method)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
