@@ -1,8 +1,10 @@
 import pytest
 
-from rotorvib.comparison import (Reproduced, build_table, claim_verdict, merge_variants,
-                                 read_reproduced, totals, verdict, with_findings,
-                                 write_reproduced)
+from rotorvib.comparison import (Margin, Reproduced, build_table, claim_verdict,
+                                 margin_text, merge_variants, read_reproduced, totals, verdict,
+                                 with_findings, write_reproduced)
+
+HOLDS, FAILS = Margin(0.2, 0.01, "s", "test"), Margin(-0.2, 0.01, "s", "test")
 
 
 @pytest.mark.parametrize("paper, reproduced, rel, word", [
@@ -45,8 +47,8 @@ def test_claim_verdicts_from_variants():
 
 def test_a_claim_evaluated_under_two_variants_that_disagree_depends():
     rows = merge_variants({
-        "printed": [Reproduced.claim("B", "claim", True, "0.1 s"), Reproduced.of("B", "q", 1, "x")],
-        "consistent": [Reproduced.claim("B", "claim", False, "never balances"),
+        "printed": [Reproduced.claim("B", "claim", HOLDS, "0.1 s"), Reproduced.of("B", "q", 1, "x")],
+        "consistent": [Reproduced.claim("B", "claim", FAILS, "never balances"),
                        Reproduced.of("B", "q", 2, "x")]})
     table = build_table([{"paper": "B", "item": "F", "quantity": "claim", "unit": "",
                           "value": None, "source": "printed"},
@@ -59,8 +61,9 @@ def test_a_claim_evaluated_under_two_variants_that_disagree_depends():
 
 
 def test_reproduced_rows_round_trip(tmp_path):
-    rows = [Reproduced.claim("B", "c", {"printed": True, "consistent": None}, "why, and how"),
-            Reproduced.of("B", "q", 55.0, "x", implied=55.2), Reproduced.claim("A", "d", False, "")]
+    rows = [Reproduced.claim("B", "c", {"printed": HOLDS, "consistent": None}, "why, and how"),
+            Reproduced.of("B", "q", 55.0, "x", implied=55.2), Reproduced.claim("A", "d", FAILS, ""),
+            Reproduced.claim("A", "e", Margin(float("inf"), 0.0, "", "no rival"), "x")]
     write_reproduced(rows, tmp_path / "r.csv")
     assert read_reproduced(tmp_path / "r.csv") == rows
 
@@ -74,16 +77,16 @@ def _values():
 
 def test_table_joins_and_requires_explanations():
     rows = build_table(_values(), [Reproduced.of("C", "q", 1.005, ""),
-                                   Reproduced.claim("C", "claim", True, "because")])
+                                   Reproduced.claim("C", "claim", HOLDS, "because")])
     assert [r["verdict"] for r in rows] == ["MATCH", "SUPPORTED"]
     with pytest.raises(ValueError, match="no explanation"):
         build_table(_values(), [Reproduced.of("C", "q", 2.0, ""),
-                                Reproduced.claim("C", "claim", True, "x")])
+                                Reproduced.claim("C", "claim", HOLDS, "x")])
     with pytest.raises(ValueError, match="no reproduced value"):
         build_table(_values(), [Reproduced.of("C", "q", 1.0, "")])
     with pytest.raises(ValueError, match="missing from the paper-values file"):
         build_table(_values(), [Reproduced.of("C", "q", 1.0, ""),
-                                Reproduced.claim("C", "claim", True, "x"),
+                                Reproduced.claim("C", "claim", HOLDS, "x"),
                                 Reproduced.of("C", "other", 1.0, "x")])
 
 
@@ -106,3 +109,40 @@ def test_a_finding_is_one_cause_however_many_rows_show_it():
     table = [{**r, "paper_value": 1.0, "source": "printed"} for r in rows]
     assert totals(table)[0] == ("printed numbers (7 rows, 6 findings): MATCH 6 (5 findings), "
                                 "MINOR 0, MAJOR 1 (1 finding), PAPER-INCONSISTENT 0")
+
+
+@pytest.mark.parametrize("value, uncertainty, holds", [
+    (0.5, 0.1, True), (-0.5, 0.1, False),
+    (0.05, 0.1, None), (-0.05, 0.1, None), (0.1, 0.1, None),   # inside the noise: undecided
+    (0.0, 0.0, True), (-1.0, 0.0, False),                       # exact: an inclusive bound
+    (float("nan"), 0.0, None), (float("inf"), 1.0, True), (float("-inf"), 1.0, False),
+])
+def test_a_margin_decides_only_beyond_its_uncertainty(value, uncertainty, holds):
+    assert Margin(value, uncertainty, "s", "test").holds() is holds
+
+
+def test_a_claim_decided_inside_its_uncertainty_is_undetermined_and_shows_its_margin():
+    """A GA pick that wins by 2 ms when its seeds spread by 30 ms decides nothing."""
+    values = [{"paper": "B", "item": "GA", "quantity": "claim", "unit": "", "value": None,
+               "source": "printed"}]
+    inside = Margin(0.002, 0.03, "s", "half the range over 5 seeds")
+    row, = build_table(values, [Reproduced.claim("B", "claim", inside, "wins by 2 ms")])
+    assert row["verdict"] == "UNDETERMINED"
+    assert (row["margin"], row["uncertainty"], row["margin_unit"]) == (0.002, 0.03, "s")
+    assert margin_text(row) == "+0.002 +/- 0.03 (s; half the range over 5 seeds)"
+    row, = build_table(values, [Reproduced.claim("B", "claim", Margin(0.04, 0.03, "s", "x"), "y")])
+    assert row["verdict"] == "SUPPORTED"
+
+
+def test_a_decided_claim_needs_a_margin_and_a_margin_a_nonnegative_uncertainty():
+    values = [{"paper": "B", "item": "GA", "quantity": "claim", "unit": "", "value": None,
+               "source": "printed"}]
+    with pytest.raises(TypeError, match="needs a Margin or None, not bool"):
+        Reproduced.claim("B", "claim", True, "x")
+    with pytest.raises(ValueError, match="uncertainty must be >= 0"):
+        Margin(1.0, -0.1, "s", "x")
+    with pytest.raises(ValueError, match="uncertainty must be >= 0"):
+        Margin(1.0, float("nan"), "s", "x")
+    # undecidable for want of material: no margin, and UNDETERMINED
+    row, = build_table(values, [Reproduced.claim("B", "claim", None, "ref. [8] not given")])
+    assert row["verdict"] == "UNDETERMINED" and row["margin"] is None

@@ -40,7 +40,7 @@ CASES = [
     ("paper_c.den_hartog.d", -0.1, None), ("paper_c.time_response.t_end", 0, None),
     ("paper_c.time_response.rtol", 1e-16, None),
     ("paper_c.time_response.samples_per_period", 4, None),
-    ("paper_c.claims.fig3_time", 5.0, None), ("paper_c.claims.close_tolerance", 2.0, None),
+    ("paper_c.claims.fig3_time", 5.0, None), ("comparison.close", 2.0, None),
     ("paper_c.distance_study.offsets", [0.0], None),
     ("paper_c.distance_study.offsets", [0.0, 0.0], None),
     # paper B

@@ -156,7 +156,7 @@ def test_basin_map_is_run_on_half_the_grid_and_mirrors_the_full_one(setup, monke
 
 
 def test_the_share_balanced_by_a_time_counts_censored_runs_as_never():
-    from rotorvib.papers.b.claims import share_balanced_by
+    from rotorvib.papers.b.curves import share_balanced_by
 
     times = np.array([[1.0, 2.0], [np.nan, 3.0]])
     assert [share_balanced_by(times, t) for t in (0.5, 1.0, 2.5, 3.0, 1e9)] == \
@@ -168,20 +168,25 @@ def test_an_ic_is_typical_when_its_share_lies_in_the_band():
     every IC of every case lies within the band, under each kinematics."""
     import xarray as xr
 
-    from rotorvib.papers.b.claims import basin_rows, faster_share
+    from rotorvib.papers.b.claims import basin_rows
+    from rotorvib.papers.b.curves import faster_share
 
     times = np.array([[1.0, 2.0], [np.nan, 3.0]])
     assert faster_share(times, np.nan) == 0.75 and faster_share(times, 2.0) == 0.5
-    grid = np.broadcast_to(np.arange(1.0, 11.0).reshape(1, 1, 10, 1), (1, 1, 10, 1))
+    grid = np.arange(1.0, 101.0).reshape(1, 1, 10, 10)
     basin = xr.Dataset(
         {"balance_time": (("kinematics", "case", "phi1", "phi2"), grid),
-         "ic_balance_time": (("kinematics", "case", "ic"), [[[2.0, 5.0, 9.0]]])},
+         "ic_balance_time": (("kinematics", "case", "ic"), [[[20.0, 50.0, 90.0]]])},
         coords={"kinematics_name": ("kinematics", ["printed"]), "case_beta": ("case", [0.2]),
                 "case_mass": ("case", [0.006]), "ic_name": ("ic", ["IC1", "IC2", "IC3"])})
-    (row,) = basin_rows(basin, "printed", (0.1, 0.9))
+    (row,) = basin_rows(basin, "printed", (0.1, 0.95))
     assert row.holds == (("", True),) and "IC1 20%, IC2 50%, IC3 90%" in row.explanation
+    assert row.margin.value == pytest.approx(0.05) and row.margin.uncertainty == 0.01
     (row,) = basin_rows(basin, "printed", (0.25, 0.9))
     assert row.holds == (("", False),)
+    # IC3 at 90 % on the edge of the band: within one grid cell (1 %), nothing is decided
+    (row,) = basin_rows(basin, "printed", (0.1, 0.9))
+    assert row.holds == (("", None),)
 
 
 def test_the_robust_objectives_are_the_mean_time_and_the_worst_force_of_direct_runs(setup):
@@ -221,10 +226,15 @@ def test_the_gap_to_the_front_is_measured_at_no_more_force():
     np.testing.assert_allclose(gap_to_front(ds), [0.4, 0.0, 0.03])
     np.testing.assert_allclose(standard_errors(ds)[0], np.std([4.0, 4.8, 4.4, 4.4], ddof=1) / 2)
     (row,) = pareto_rows(ds)                         # 0.03 s gap, standard error 0.05 s
-    assert row.holds == (("", True),) and "0.03 s slower" in row.explanation
+    assert row.holds == (("", None),) and "0.03 s slower" in row.explanation
+    assert row.margin.value == pytest.approx(-0.03) and row.margin.unit == "s"
     ds["design_times"][2] = [3.03] * 4               # same mean, no spread: off the front
     (row,) = pareto_rows(ds)
     assert row.holds == (("", False),)
+    ds["design_times"][2] = [2.5] * 4                # 0.5 s ahead of the front: efficient
+    ds["design_balance_time"][2] = 2.5
+    (row,) = pareto_rows(ds)
+    assert row.holds == (("", True),) and row.margin.value == pytest.approx(0.5)
 
 
 def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
@@ -292,3 +302,51 @@ def test_a_design_with_a_censored_run_has_no_mean_and_decides_nothing():
     (row,) = pareto_rows(ds)
     assert row.holds == (("", None),) and "1 of 4" in row.explanation
     assert verdict(None, None, holds=row.holds) == (None, "UNDETERMINED")
+
+
+def test_curve_measures_order_a_censored_run_after_every_balanced_one():
+    """rise, smallest_rise and dip_depth on curves with censored runs (NaN): a censored run is
+    longer than any balanced one; two censored neighbours decide nothing (NaN)."""
+    from rotorvib.papers.b.curves import dip_depth, rise, smallest_rise, within
+
+    assert rise([4.0, 5.0, 4.5, 6.0]) == 2.0 and smallest_rise([4.0, 5.0, 4.5, 6.0]) == -0.5
+    assert rise([np.nan, 5.0, 6.0]) == -np.inf                 # slowest at the bottom
+    assert rise([4.0, np.nan]) == np.inf
+    assert np.isnan(rise([np.nan, 5.0, np.nan])) and np.isnan(smallest_rise([np.nan, np.nan]))
+    assert smallest_rise([np.nan, np.nan, 5.0, 6.0]) == -np.inf    # the censored pair skipped
+    assert dip_depth([6.0, 4.0, 5.0]) == 1.0 and dip_depth([4.0, 5.0, 6.0]) == 0.0
+    assert dip_depth([np.nan, 4.0, 5.0]) == 1.0
+    assert within([0.12, 0.18], (0.1, 0.2)) == pytest.approx(0.02)
+    assert within([0.05, 0.15], (0.1, 0.2)) == pytest.approx(-0.05)
+
+
+def test_a_ga_claim_inside_the_seed_spread_is_undetermined():
+    """ga_rows decides "the optimum beta lies in [0.1, 0.2]" only beyond half the range of
+    the optima over the GA's seeds."""
+    import xarray as xr
+
+    from rotorvib.comparison import claim_verdict
+    from rotorvib.papers.b.claims import ga_rows
+
+    def ga(by_seed):
+        by_seed = np.asarray(by_seed, float).reshape(1, 1, 1, -1)
+        dims = ("kinematics", "eps_bar", "ic")
+        return xr.Dataset(
+            {"beta_opt": (dims, by_seed[..., 0]), "mass_opt": (dims, [[[0.006]]]),
+             "balance_time_opt": (dims, [[[4.0]]]), "censored": (dims, [[[0]]]),
+             "beta_opt_by_seed": (dims + ("seed",), by_seed)},
+            coords={"kinematics_name": ("kinematics", ["printed"]), "eps_bar": [0.012],
+                    "ic_name": ("ic", ["IC1"])},
+            attrs={"summary": "pymoo GA, population 20, 20 generations"})
+
+    bounds = {"mass": [0.006, 0.02]}
+
+    def verdict(by_seed):
+        row = ga_rows(ga(by_seed), "printed", bounds, (0.1, 0.2))[0]
+        return claim_verdict(row.holds), row.margin
+
+    assert verdict([0.15, 0.151, 0.149, 0.15, 0.15])[0] == "SUPPORTED"
+    assert verdict([0.3, 0.3, 0.31, 0.29, 0.3])[0] == "NOT SUPPORTED"
+    word, margin = verdict([0.19, 0.12, 0.35, 0.15, 0.18])     # 0.01 inside, seeds spread 0.115
+    assert word == "UNDETERMINED"
+    assert margin.value == pytest.approx(0.01) and margin.uncertainty == pytest.approx(0.115)

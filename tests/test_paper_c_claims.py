@@ -1,6 +1,7 @@
 """Paper C's claims tested as the paper words them."""
 
 import numpy as np
+import pytest
 
 from rotorvib.comparison import claim_verdict
 from rotorvib.models.absorber.frequency_response import bare_rotor_amplitude
@@ -26,3 +27,31 @@ def test_better_at_all_frequencies_is_tested_at_every_frequency(config):
     assert above.min() == w[0] and above.max() == w[-1]        # both ends of the band
     low = above[above < 1].max()
     assert f"above the bare rotor for w in {w[0]:.3f}-{low:.3f}" in row.explanation
+
+
+def test_the_undamped_zero_is_located_between_grid_points(config):
+    """Table 2's undamped response vanishes where a22 = 0 (both sets tuned alike), at
+    w = sqrt(2 k1 / m1) / omega_n = 0.98995: 1.005 % from resonance, so "zero at
+    resonance" read as the same number within 1 % fails, by a margin far beyond the secant
+    estimate's error; on a grid that straddles the zero, the grid's minimum alone would say
+    0.99 and decide nothing."""
+    from rotorvib.papers.c.claims import zero_of_modulus
+
+    c = config["paper_c"]
+    rotor, table2 = Rotor(**c["rotor"]), dual_absorber(**c["table2"])
+    exact = np.sqrt(2 * c["table2"]["k1"] / c["table2"]["m1"]) / rotor.omega_n
+    grid = c["frequency_response"]
+    w = np.linspace(grid["w_min"], grid["w_max"], grid["n_points"])
+    fr = frequency_response_dataset(rotor, table2, dual_to_vector(table2), w)
+    step = w[1] - w[0]
+    zero, error = zero_of_modulus(w, fr.D_table2_undamped.values)
+    assert abs(zero - exact) <= error < 10 * step**2           # the bound holds
+    assert abs(zero - exact) < 1e-3 * step**2                  # the cubic: O(step^4)
+    (row,) = [r for r in frequency_rows(fr, c["claims"]) if r.quantity == "fig5_undamped_zero"]
+    assert row.margin.value == pytest.approx(0.01 - abs(exact - 1), abs=error)
+    assert -row.margin.value > 100 * row.margin.uncertainty
+    assert claim_verdict(row.holds) == "NOT SUPPORTED"
+    # a linear f is located exactly, wherever the zero falls between samples
+    x = np.linspace(0.0, 1.0, 11)
+    zero, error = zero_of_modulus(x, np.abs(3.0 * (x - 0.437)))
+    assert zero == pytest.approx(0.437, abs=1e-12) and error < 1e-12

@@ -23,10 +23,14 @@ def html(rst: str) -> str:
 
 
 def row(paper="B", item="Fig 8", quantity="q", verdict="MAJOR", paper_value="9.04",
-        reproduced="5.98", rel_error="0.3385", unit="s", explanation="why"):
+        reproduced="5.98", rel_error="0.3385", unit="s", explanation="why", margin=""):
+    """A row of results/comparison.csv as the report reads it (text cells); ``margin`` is
+    ``(value, uncertainty, unit, basis)`` for a claim."""
     return {"paper": paper, "item": item, "quantity": quantity, "unit": unit, "source": "printed",
             "paper_value": paper_value, "reproduced": reproduced, "rel_error": rel_error,
-            "verdict": verdict, "explanation": explanation}
+            "verdict": verdict, "explanation": explanation,
+            **dict(zip(("margin", "uncertainty", "margin_unit", "margin_basis"),
+                       margin or ("", "", "", "")))}
 
 
 @pytest.mark.parametrize("text", ["|Theta(omega_n)|", "x_i * y_", "`a` [8] <b> \\c", "r_G_ d_1_"])
@@ -89,13 +93,15 @@ def test_rows_are_tied_to_every_figure_their_item_names_and_to_declared_items():
 def test_a_caption_states_each_row_with_its_verdict_and_renders_cleanly():
     rows = [row(explanation="printed: envelope | consistent: threshold *crossing*"),
             row(verdict="SUPPORTED", paper_value="", reproduced="", rel_error="", unit="",
-                quantity="claim_q", explanation="holds under printed")]
+                quantity="claim_q", explanation="holds under printed",
+                margin=("0.25", "0.01", "s", "half the range over 5 seeds"))]
     text = report.caption("Paper B, Fig 8", "Balance time against beta_i.", rows,
                           {("B", "q"): "balance time of the Fig 7 case"})
     body = html(text)
     assert "<strong>MAJOR</strong> (Fig 8) balance time of the Fig 7 case: paper 9.04 s, " \
            "reproduced 5.98 s (33.9 % off). printed: envelope; consistent: threshold *crossing*" in body
-    assert "<strong>SUPPORTED</strong> (Fig 8) claim_q. holds under printed" in body
+    assert "<strong>SUPPORTED</strong> (Fig 8) claim_q: margin +0.25 +/- 0.01 (s; half the " \
+           "range over 5 seeds). holds under printed" in body
     assert "Balance time against beta_i." in body
     assert "states no value" in html(report.caption("t", "shows", []))
     assert "states" not in html(report.caption("t", "shows"))

@@ -12,7 +12,9 @@ reproduced values; this module joins the two and assigns a verdict:
 * a chosen or theoretical value: EXPECTED (within 1 %) or UNEXPECTED, counted apart;
 * a claim without a number: SUPPORTED, NOT SUPPORTED or DEPENDS from whether it holds under each
   variant it was evaluated under (kinematics, constructions); DEPENDS names the variants under
-  which it holds.  UNDETERMINED when no variant decides it;
+  which it holds.  UNDETERMINED when no variant decides it.  A claim carries its
+  :class:`Margin`, how far it is from failing, and the margin's own uncertainty: a margin
+  inside its uncertainty decides nothing (UNDETERMINED under that variant);
 * a number whose reproduction has no value (every run censored: NaN, never a penalty or a cap
   passed off as a number) is UNDETERMINED too, with its relative error left empty.
 """
@@ -28,7 +30,8 @@ from pathlib import Path
 from rotorvib.io.tables import write_table
 
 COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reproduced",
-           "rel_error", "verdict", "finding", "explanation")
+           "rel_error", "margin", "uncertainty", "margin_unit", "margin_basis", "verdict",
+           "finding", "explanation")
 SOURCES = ("printed", "chosen", "theory")
 MATCH_TOL = 0.01
 MINOR_TOL = 0.10
@@ -44,13 +47,43 @@ _HOLDS_TEXT = {True: "yes", False: "no", None: "undetermined"}
 
 
 @dataclass(frozen=True)
+class Margin:
+    """How far a claim is from failing, and how well that is known.
+
+    ``value`` is positive where the claim holds and negative where it fails (in ``unit``, e.g.
+    the relative amount by which one amplitude is below another); ``uncertainty`` >= 0 is the
+    size of the noise of the quantity it is measured on, from ``basis`` (seed spread of a GA,
+    the step of a grid, an integration tolerance, a bootstrap interval; 0 for exact arithmetic
+    or counts).  The claim holds when ``value > uncertainty``, fails when ``value <
+    -uncertainty`` and is undecided in between; with ``uncertainty == 0`` a margin of exactly
+    0 holds (an inclusive bound, e.g. no grid point differs).  A NaN margin decides nothing;
+    an infinite one decides by its sign."""
+
+    value: float
+    uncertainty: float
+    unit: str
+    basis: str
+
+    def __post_init__(self):
+        if not self.uncertainty >= 0:
+            raise ValueError(f"a margin's uncertainty must be >= 0, not {self.uncertainty!r}")
+
+    def holds(self) -> bool | None:
+        """True, False, or None when the margin lies inside its uncertainty (or is NaN)."""
+        v, u = float(self.value), float(self.uncertainty)
+        if math.isnan(v) or (u > 0 and abs(v) <= u):
+            return None
+        return v >= 0 if u == 0 else v > 0
+
+
+@dataclass(frozen=True)
 class Reproduced:
     """One reproduced quantity, as written by a paper's comparison-values script.
 
     ``holds`` (claims only) pairs each variant the claim was evaluated under with whether it
     holds there (None: undetermined); ``variants`` (numbers only) pairs each other variant with
     its value; ``implied`` is the value the paper's own other numbers imply, when the paper
-    states the quantity twice."""
+    states the quantity twice; ``margin`` (claims) is the reproduction's :class:`Margin`."""
 
     paper: str
     quantity: str
@@ -59,6 +92,7 @@ class Reproduced:
     holds: tuple[tuple[str, bool | None], ...] = ()
     implied: float | None = None
     variants: tuple[tuple[str, float], ...] = ()
+    margin: Margin | None = None
 
     @classmethod
     def of(cls, paper: str, quantity: str, value, explanation: str,
@@ -69,10 +103,26 @@ class Reproduced:
 
     @classmethod
     def claim(cls, paper: str, quantity: str, holds, explanation: str) -> "Reproduced":
-        """A claim row; ``holds`` is a bool (or None) or a mapping variant -> bool/None."""
+        """A claim row; ``holds`` is a :class:`Margin` (the claim holds as the margin decides),
+        None (undecidable, e.g. for want of material the paper does not give) or a mapping
+        variant -> Margin/None."""
         pairs = tuple(holds.items()) if isinstance(holds, dict) else (("", holds),)
+        for k, v in pairs:
+            if not (v is None or isinstance(v, Margin)):
+                raise TypeError(f"claim {quantity!r}: variant {k!r} needs a Margin or None, "
+                                f"not {type(v).__name__}")
         return cls(paper, quantity, None, explanation,
-                   holds=tuple((str(k), None if v is None else bool(v)) for k, v in pairs))
+                   holds=tuple((str(k), None if v is None else v.holds()) for k, v in pairs),
+                   margin=pairs[0][1])
+
+
+def within_band(ds, quantity: str, margin: tuple[float, float]) -> Margin:
+    """The :class:`Margin` of "a value lies within the band of an uncertainty study" from the
+    study dataset ``ds`` and ``(margin, uncertainty)`` of
+    :func:`rotorvib.methods.sensitivity.band_margin`, in the quantity's units."""
+    q = list(ds.quantity_name.values).index(quantity)
+    return Margin(*margin, str(ds.quantity_units.values[q]),
+                  f"bootstrap of the band's edges over {ds.sizes['sample']} samples")
 
 
 def relative_error(reference: float, value: float) -> float:
@@ -145,7 +195,8 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reprodu
         text = f"{first}: {row.explanation}" + "".join(
             f" | {name}: {r.explanation}" for name, r in alt.items()
             if r.explanation != row.explanation)
-        merged.append(Reproduced(row.paper, row.quantity, None, text, holds=holds))
+        merged.append(Reproduced(row.paper, row.quantity, None, text, holds=holds,
+                                 margin=row.margin))
     return merged
 
 
@@ -181,15 +232,29 @@ def _variants_from_text(text: str):
                                             if item))
 
 
+MARGIN_COLUMNS = ("margin", "uncertainty", "margin_unit", "margin_basis")
 REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "variants",
-                      "explanation")
+                      *MARGIN_COLUMNS, "explanation")
+
+
+def _margin_from_text(r: dict) -> Margin | None:
+    if not r["margin_basis"]:
+        return None
+    return Margin(float(r["margin"]), float(r["uncertainty"]), r["margin_unit"], r["margin_basis"])
+
+
+def _margin_cells(margin: Margin | None) -> list:
+    if margin is None:
+        return ["", "", "", ""]
+    return [repr(float(margin.value)), repr(float(margin.uncertainty)), margin.unit, margin.basis]
 
 
 def read_reproduced(path: str | Path) -> list[Reproduced]:
     with open(path, newline="", encoding="utf-8") as fh:
         return [Reproduced(r["paper"], r["quantity"], _float_or_none(r["reproduced"]),
                            r["explanation"], _holds_from_text(r["holds"]),
-                           _float_or_none(r["implied"]), _variants_from_text(r["variants"]))
+                           _float_or_none(r["implied"]), _variants_from_text(r["variants"]),
+                           _margin_from_text(r))
                 for r in csv.DictReader(fh)]
 
 
@@ -200,14 +265,16 @@ def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
         for r in rows:
             writer.writerow([r.paper, r.quantity, "" if r.reproduced is None else repr(r.reproduced),
                              _holds_to_text(r.holds), "" if r.implied is None else repr(r.implied),
-                             ";".join(f"{k}={v!r}" for k, v in r.variants), r.explanation])
+                             ";".join(f"{k}={v!r}" for k, v in r.variants),
+                             *_margin_cells(r.margin), r.explanation])
 
 
 def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[dict]:
     """Join paper values and reproduced values; every paper value must be reproduced exactly once.
 
     Raises ``ValueError`` for a paper value nobody reproduced, a reproduced quantity the data
-    file does not know, or a MINOR/MAJOR/QUALITATIVE row without an explanation.
+    file does not know, a row other than MATCH or EXPECTED without an explanation, or a claim
+    decided without a :class:`Margin`.
     """
     by_key = {}
     for r in reproduced:
@@ -229,6 +296,8 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
                                 implied=r.implied)
         if verdict_ not in ("MATCH", "EXPECTED") and not r.explanation.strip():
             raise ValueError(f"{key} is {verdict_} but has no explanation")
+        if p["value"] is None and r.margin is None and verdict_ != UNDETERMINED:
+            raise ValueError(f"claim {key} is {verdict_} but has no margin")
         explanation = r.explanation
         if verdict_ == "PAPER-INCONSISTENT":
             explanation = (f"the paper prints {p['value']:g} but its own other numbers imply "
@@ -238,8 +307,23 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
         table.append({"paper": p["paper"], "item": p["item"], "quantity": p["quantity"],
                       "unit": p["unit"], "source": p["source"], "paper_value": p["value"],
                       "reproduced": r.reproduced, "rel_error": rel, "verdict": verdict_,
-                      "explanation": explanation})
+                      "explanation": explanation,
+                      **dict(zip(MARGIN_COLUMNS, _margin_values(r.margin)))})
     return with_findings(table)
+
+
+def _margin_values(margin: Margin | None) -> tuple:
+    if margin is None:
+        return None, None, "", ""
+    return float(margin.value), float(margin.uncertainty), margin.unit, margin.basis
+
+
+def margin_text(row: dict) -> str:
+    """A comparison row's margin as text, e.g. ``"+0.12 +/- 0.01 (relative; grid step)"``."""
+    if row["margin"] is None or row["margin"] == "":
+        return ""
+    unit = f"{row['margin_unit']}; " if row["margin_unit"] else ""
+    return f"{float(row['margin']):+.3g} +/- {float(row['uncertainty']):.2g} ({unit}{row['margin_basis']})"
 
 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
@@ -305,6 +389,8 @@ def verdict_definitions() -> str:
             "paper does not print (source chosen or theory): EXPECTED (<= "
             f"{100 * MATCH_TOL:g} %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT SUPPORTED, "
             "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED. "
+            "Each claim carries its margin (positive where it holds) and the margin's "
+            "uncertainty; a margin inside its uncertainty decides nothing: UNDETERMINED. "
             "A number with nothing to compare (every run censored) is UNDETERMINED.")
 
 

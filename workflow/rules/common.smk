@@ -42,6 +42,8 @@ except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
+# the comparison's reading of the papers' words ("close"), shared by every paper's claims
+CLOSE = config["comparison"]["close"]
 # Where every output goes: results/ for the paper configuration, its own folder for another
 # (config key `results`; the reduced configuration writes to results/reduced).
 RESULTS_DIR = config["results"]

@@ -164,6 +164,8 @@ rule a_reproduced_values:
     params:
         case=A["case"],
         zoom=A["zoom"],
+        close=CLOSE,
+        rk=A["rk"],
     message:
         "Paper A: measuring the paper's claims on the datasets"
     script:

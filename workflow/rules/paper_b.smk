@@ -492,6 +492,8 @@ rule b_reproduced_values:
         ga=B["ga"],
         beta_band=B["claims"]["beta_opt_range"],
         typical=B["claims"]["ics_typical_share"],
+        time_uncertainty=B["claims"]["time_uncertainty"],
+        r_threshold=B["balance"]["r_threshold"],
     message:
         "Paper B: measuring the paper's stated values and claims on the datasets"
     script:

@@ -330,6 +330,8 @@ rule c_reproduced_values:
     params:
         rotor=C["rotor"],
         claims=C["claims"],
+        close=CLOSE,
+        rtol=C["time_response"]["rtol"],
     message:
         "Paper C: measuring the paper's stated values and claims on the datasets"
     script:

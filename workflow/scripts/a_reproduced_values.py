@@ -12,5 +12,5 @@ data = {name: read_dataset(path, producers) for name, path in snakemake.input.it
         if name != "paper_values"}
 p = snakemake.params
 rows = reproduce(**data, case_beta=p.case["beta"], window=p.zoom[1] - p.zoom[0],
-                 paper_values=paper_values_of(snakemake.input.paper_values, "A"))
+                 close=p.close, rk=p.rk, paper_values=paper_values_of(snakemake.input.paper_values, "A"))
 write_reproduced(rows, snakemake.output[0])

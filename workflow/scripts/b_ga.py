@@ -14,5 +14,6 @@ p = snakemake.params
 ga = p.ga
 ds = ga_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, eps_bars=ga["eps_bar"],
                 ics=p.ics, beta_bounds=ga["beta"], mass_bounds=ga["mass"], pop_size=ga["pop_size"],
-                n_gen=ga["n_gen"], seed=ga["seed"], censored_penalty=ga["censored_penalty"])
+                n_gen=ga["n_gen"], seed=ga["seed"], spread_seeds=ga["spread_seeds"],
+                censored_penalty=ga["censored_penalty"])
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p), ga["seed"]))

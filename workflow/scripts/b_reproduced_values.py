@@ -18,6 +18,7 @@ uncertainty = {name.removeprefix("uncertainty_"): data.pop(name)
                for name in [n for n in data if n.startswith("uncertainty_")]}
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
+                 r_threshold=p.r_threshold, time_uncertainty=p.time_uncertainty,
                  paper_values=paper)
 rows += pareto_rows(pareto) + uncertainty_rows(uncertainty, paper)
 write_reproduced(rows, snakemake.output[0])

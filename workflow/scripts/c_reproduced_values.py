@@ -16,7 +16,7 @@ rotor = Rotor(**p.rotor)
 data = {name: read_dataset(snakemake.input[name], producers) for name in ("ga", "fr", "mr", "distance", "tr")}
 paper = paper_values_of(snakemake.input.paper_values, "C")
 rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.claims,
-                 paper_values=paper)
+                 close=p.close, rtol=p.rtol, paper_values=paper)
 rows += broadband_rows(read_dataset(snakemake.input.bb, producers))
 rows += uncertainty_rows(read_dataset(snakemake.input.uncertainty, producers), paper)
 write_reproduced(rows, snakemake.output[0])

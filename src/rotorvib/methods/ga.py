@@ -97,19 +97,21 @@ def _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta):
                          "lower < upper in every variable")
     integer("pop_size", pop_size, 2)
     integer("n_gen", n_gen, 1)
-    integer("seed", seed, 0)
+    for value in np.atleast_1d(np.asarray(seed, dtype=object)):
+        integer("seed", value, 0)
     number("sbx_eta", sbx_eta)
     number("pm_eta", pm_eta)
     return lower, upper
 
 
 def minimise_many(objectives: Callable[[list[np.ndarray]], list[np.ndarray]], n_problems: int,
-                  lower, upper, *, pop_size: int, n_gen: int, seed: int, sbx_eta: float = 15.0,
+                  lower, upper, *, pop_size: int, n_gen: int, seed, sbx_eta: float = 15.0,
                   pm_eta: float = 20.0,
                   progress: Callable[[int, float], None] | None = None) -> list[GAResult]:
     """Minimise ``n_problems`` objectives over the same box ``[lower, upper]`` with pymoo's
     real-coded GA (tournament selection, SBX crossover, polynomial mutation, fitness survival),
-    each for exactly ``n_gen`` generations from the same ``seed``, in lockstep: every
+    each for exactly ``n_gen`` generations from ``seed`` (one for all, or one per problem: the
+    same problem under several seeds gives the spread of its optimum), in lockstep: every
     generation, ``objectives([X_0, ..., X_{n-1}]) -> [f_0, ..., f_{n-1}]`` evaluates all the
     populations in one call (one batch of runs keeps every core busy).  Each algorithm draws from
     its own random generator, so the results equal those of ``n_problems`` separate runs of
@@ -119,13 +121,17 @@ def minimise_many(objectives: Callable[[list[np.ndarray]], list[np.ndarray]], n_
     ``ValueError`` naming them; a non-finite objective value raises ``FloatingPointError``.
     """
     lower, upper = _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta)
+    n_problems = integer("n_problems", n_problems, 1)
+    seeds = [seed] * n_problems if np.ndim(seed) == 0 else list(seed)
+    if len(seeds) != n_problems:
+        raise ValueError(f"seed: one seed or one per problem ({n_problems}), not {len(seeds)}")
     runs = []
-    for i in range(integer("n_problems", n_problems, 1)):
+    for i in range(n_problems):
         problem = _HandedOver(lower, upper)
         algorithm = GA(pop_size=pop_size, crossover=SBX(eta=sbx_eta), mutation=PM(eta=pm_eta),
                        eliminate_duplicates=True)
         history = _History(progress if i == 0 else None)
-        algorithm.setup(problem, termination=("n_gen", n_gen), seed=seed, callback=history,
+        algorithm.setup(problem, termination=("n_gen", n_gen), seed=seeds[i], callback=history,
                         verbose=False)
         runs.append((problem, algorithm, history))
     while runs[0][1].has_next():

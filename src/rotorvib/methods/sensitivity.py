@@ -112,10 +112,32 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
     )
 
 
-def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[bool, str]:
-    """Whether ``value`` lies within the outer percentiles of ``quantity``'s band, and a
-    sentence with the band, the nominal value and the input of largest total index (with its
-    interval) at the largest sample."""
+def edge_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
+    """Standard deviation of each of ``percentiles`` of the sample ``y`` over ``resamples``
+    bootstrap resamples: how well a finite sample pins a band's edges."""
+    y = np.asarray(y, float)
+    rng = np.random.default_rng(seed)
+    draws = rng.integers(0, y.size, (resamples, y.size))
+    return np.percentile(y[draws], percentiles, axis=1).std(axis=1)
+
+
+def band_margin(ds: xr.Dataset, quantity: str, value: float) -> tuple[float, float]:
+    """How far ``value`` lies inside ``quantity``'s band (``min(value - low, high - value)``,
+    negative outside) and the uncertainty of that margin: twice the bootstrap standard deviation
+    of the nearer edge (:func:`edge_spread`, the dataset's resamples and seed)."""
+    q = list(ds.quantity_name.values).index(quantity)
+    band, p = ds.band.values[q], ds.percentile.values
+    lo, hi = band[0], band[-1]
+    spread = edge_spread(ds.y.values[q], [p[0], p[-1]], resamples=int(ds.attrs["sobol_resamples"]),
+                         seed=int(ds.attrs["sobol_seed"]))
+    nearer = 0 if value - lo <= hi - value else 1
+    return float(min(value - lo, hi - value)), float(2 * spread[nearer])
+
+
+def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[tuple[float, float], str]:
+    """``value``'s margin inside the outer percentiles of ``quantity``'s band with its
+    uncertainty (:func:`band_margin`), and a sentence with the band, the nominal value and the
+    input of largest total index (with its interval) at the largest sample."""
     q = list(ds.quantity_name.values).index(quantity)
     band, units = ds.band.values[q], str(ds.quantity_units.values[q])
     lo, hi = band[0], band[-1]
@@ -127,7 +149,7 @@ def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[bool, s
         top = int(np.nanargmax(st))
         driver = (f"largest total Sobol index: {ds.input_name.values[top]} ({st[top]:.2f} +/- "
                   f"{conf[top]:.2f}, {int(ds.n_base[-1])} base points)")
-    return bool(lo <= value <= hi), (
+    return band_margin(ds, quantity, value), (
         f"{value:.4g} {units} against the {p[0]:g}-{p[-1]:g} % band {lo:.4g}-{hi:.4g} {units} "
         f"(median {band[len(band) // 2]:.4g}, nominal {float(ds.nominal[q]):.4g}) over the "
         f"input ranges; {driver}")

@@ -14,7 +14,7 @@ import re
 from collections import Counter
 from pathlib import Path
 
-from rotorvib.comparison import VERDICT_GROUPS, totals, verdict_definitions
+from rotorvib.comparison import VERDICT_GROUPS, margin_text, totals, verdict_definitions
 
 # Verdicts that are findings: the paper and the reproduction disagree.
 FINDINGS = ("MAJOR", "PAPER-INCONSISTENT", "UNEXPECTED", "NOT SUPPORTED")
@@ -119,8 +119,8 @@ def _number(value) -> str:
 
 def statement(row: dict, claim: str = "", lead: str = "") -> str:
     """One comparison row as a reST bullet: what the paper states (``claim``, else the
-    quantity's name), what we find, the verdict and its explanation; ``lead`` replaces the
-    verdict and item at the start."""
+    quantity's name), what we find (a claim: its margin and the margin's uncertainty), the
+    verdict and its explanation; ``lead`` replaces the verdict and item at the start."""
     said = claim or row["quantity"]
     if row["paper_value"] not in ("", None):
         unit = f" {row['unit']}" if row["unit"] not in ("", "1", None) else ""
@@ -129,6 +129,8 @@ def statement(row: dict, claim: str = "", lead: str = "") -> str:
         if row["rel_error"] not in ("", None):
             found += f" ({100 * float(row['rel_error']):.1f} % off)"
         said = f"{said}: {found}"
+    elif margin_text(row):
+        said = f"{said}: margin {margin_text(row)}"
     lead = f"**{rst_text(lead)}**" if lead else f"**{row['verdict']}** ({rst_text(row['item'])})"
     # a claim's explanation quotes each variant, "printed: ... | consistent: ..."
     explanation = f" {rst_text(row['explanation'].replace(' | ', '; '))}" if row["explanation"] else ""

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from rotorvib.io.coords import labels, pick
-from rotorvib.papers.b.claims import faster_share, printed_values
+from rotorvib.papers.b.claims import printed_values
+from rotorvib.papers.b.curves import faster_share
 from rotorvib.io.plotting import (PAPER_STYLE, figure, generation_axis, paper_vline,
                                   sensitivity)
 

@@ -55,30 +55,37 @@ def tune_balancer(objective, beta_bounds, mass_bounds, *, pop_size, n_gen, seed)
 
 
 def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, mass_bounds,
-               pop_size, n_gen, seed, censored_penalty) -> xr.Dataset:
+               pop_size, n_gen, seed, spread_seeds=(), censored_penalty) -> xr.Dataset:
     """Genetic algorithm over (beta, m) for every kinematics x eps_bar x initial condition
-    (section 9), all problems in lockstep (one batch of runs per generation)."""
+    (section 9), all problems in lockstep (one batch of runs per generation).  The optimum is
+    that of ``seed``; each problem is solved again from each of ``spread_seeds`` (in the same
+    batches), and the ``*_by_seed`` variables hold the optima of all the seeds, the first
+    ``seed``'s: the spread of a GA's answer over its seeds."""
+    seeds = [seed, *spread_seeds]
     shape = (len(kinematics), len(eps_bars), len(ics))
     problems = [{"kinematics": kin, "eps_bar": eps_bar, "phi0_deg": ics[ic]}
                 for kin in kinematics for eps_bar in eps_bars for ic in ics]
-    results = minimise_many(balance_time_objectives(setup, problems,
+    results = minimise_many(balance_time_objectives(setup, problems * len(seeds),
                                                     censored_penalty=censored_penalty),
-                            len(problems), *_box(beta_bounds, mass_bounds), pop_size=pop_size,
-                            n_gen=n_gen, seed=seed)
-    x_opt = np.array([r.x for r in results]).reshape(shape + (2,))
-    f_opt = np.array([r.f for r in results]).reshape(shape)
-    history = np.array([r.history["best_f"] for r in results]).reshape(shape + (n_gen,))
+                            len(problems) * len(seeds), *_box(beta_bounds, mass_bounds),
+                            pop_size=pop_size, n_gen=n_gen,
+                            seed=[s for s in seeds for _ in problems])
+    x_all = np.moveaxis(np.array([r.x for r in results]).reshape((len(seeds),) + shape + (2,)),
+                        0, -2)
+    f_all = np.moveaxis(np.array([r.f for r in results]).reshape((len(seeds),) + shape), 0, -1)
+    first = results[:len(problems)]
+    history = np.array([r.history["best_f"] for r in first]).reshape(shape + (n_gen,))
     t_end = setup.criterion.t_end
-    censored = f_opt >= t_end                 # scored the penalty: it is no time, kept as NaN
-    f_opt, history = (np.where(v >= t_end, np.nan, v) for v in (f_opt, history))
-    n_eval = np.array([r.history["n_eval"][-1] for r in results], dtype=np.int64).reshape(shape)
+    censored = f_all[..., 0] >= t_end         # scored the penalty: it is no time, kept as NaN
+    f_all, history = (np.where(v >= t_end, np.nan, v) for v in (f_all, history))
+    n_eval = np.array([r.history["n_eval"][-1] for r in first], dtype=np.int64).reshape(shape)
     dims = ("kinematics", "eps_bar", "ic")
     return xr.Dataset(
-        {"beta_opt": (dims, x_opt[..., 0], {"long_name": "optimum ball damping ratio",
-                                            "units": "1"}),
-         "mass_opt": (dims, x_opt[..., 1], {"long_name": "optimum ball mass", "units": "kg"}),
-         "balance_time_opt": (dims, f_opt, {"long_name": "balance time at the optimum (NaN "
-                                                         "if censored)", "units": "s"}),
+        {"beta_opt": (dims, x_all[..., 0, 0], {"long_name": "optimum ball damping ratio",
+                                               "units": "1"}),
+         "mass_opt": (dims, x_all[..., 0, 1], {"long_name": "optimum ball mass", "units": "kg"}),
+         "balance_time_opt": (dims, f_all[..., 0], {"long_name": "balance time at the optimum "
+                                                                 "(NaN if censored)", "units": "s"}),
          "censored": (dims, censored.astype(np.int8),
                       {"long_name": "1 if even the optimum did not balance by t_end",
                        "units": "1"}),
@@ -86,14 +93,29 @@ def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, ma
                                                        "GA", "units": "1"}),
          "best_balance_time": (dims + ("generation",), history,
                                {"long_name": "best balance time of each generation (NaN: no "
-                                             "run of it balanced by t_end)", "units": "s"})},
+                                             "run of it balanced by t_end)", "units": "s"}),
+         "beta_opt_by_seed": (dims + ("seed",), x_all[..., 0],
+                              {"long_name": "optimum ball damping ratio from each seed",
+                               "units": "1"}),
+         "mass_opt_by_seed": (dims + ("seed",), x_all[..., 1],
+                              {"long_name": "optimum ball mass from each seed", "units": "kg"}),
+         "balance_time_opt_by_seed": (dims + ("seed",), f_all,
+                                      {"long_name": "balance time at each seed's optimum (NaN if "
+                                                    "censored)", "units": "s"})},
         coords={**label_coord("kinematics", kinematics, KINEMATICS_LONG_NAME),
                 **parameter_coord("eps_bar", eps_bars),
                 **label_coord("ic", list(ics), IC_LONG_NAME),
                 "generation": ("generation", np.arange(1, n_gen + 1, dtype=np.int32),
-                               {"long_name": "GA generation", "units": "1"})},
+                               {"long_name": "GA generation", "units": "1"}),
+                "seed": ("seed", np.arange(len(seeds), dtype=np.int32),
+                         {"long_name": "index of the GA's seed (0 gives the optimum)",
+                          "units": "1"}),
+                "seed_value": ("seed", np.asarray(seeds, np.int64),
+                               {"long_name": "seed of the GA's random generator",
+                                "units": "1"})},
         attrs=dataset_attrs("genetic-algorithm optimum of ball damping and mass",
                             f"pymoo GA, population {pop_size}, {n_gen} generations, seed "
-                            f"{seed}; objective: balance time (censored runs score "
+                            f"{seed} (and {len(spread_seeds)} more seeds for the spread of the "
+                            f"optimum); objective: balance time (censored runs score "
                             f"{censored_penalty} t_end)", "section 9"),
     )

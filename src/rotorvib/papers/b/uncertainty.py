@@ -19,7 +19,7 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Reproduced
+from rotorvib.comparison import Margin, Reproduced, within_band
 from rotorvib.methods.sensitivity import band_statement, problem, sample, study_dataset
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import Setup, dataset_attrs
@@ -104,8 +104,9 @@ def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reprodu
     band of its reproduction?"""
     rows = []
     for quantity, key in printed.items():
-        holds, text = band_statement(ds, quantity, paper[key])
-        rows.append(_claim(f"{key}_within_uncertainty", holds, f"printed {text}"))
+        margin, text = band_statement(ds, quantity, paper[key])
+        rows.append(_claim(f"{key}_within_uncertainty", within_band(ds, quantity, margin),
+                           f"printed {text}"))
     return rows
 
 
@@ -120,7 +121,10 @@ def balances_row(ds: xr.Dataset) -> Reproduced:
                          for i in np.argsort(-np.nan_to_num(st, nan=-1.0))[:2]))
     ratio = ds.attrs["design_mass"] / ds.attrs["disk_mass"]
     half = ds.attrs["nominal_eps_bar"] / 2
-    return _claim("optimum_balances_within_tolerances", share == 1.0,
+    return _claim("optimum_balances_within_tolerances",
+                  Margin(share - 1.0, 0.0, "share of the input points",
+                         "count over the sample (exact); a sample can find an input that does "
+                         "not balance, never prove that all do"),
                   f"{share:.1%} of the {ds.sizes['sample']} input points balance by t_end; "
                   f"whether a run balances depends most on {drivers} (total Sobol indices): "
                   f"the design has m/M = {ratio:.4g} against eps_bar/2 = {half:.4g} (eq. 34: a "

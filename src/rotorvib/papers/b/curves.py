@@ -1,0 +1,83 @@
+"""Measures on paper B's balance times: censored runs, curves against a parameter, shares of
+initial positions, and the margins of claims on them.
+
+A censored run (not balanced by ``t_end``) is NaN in the datasets; orderings treat it as longer
+than any balanced run (:func:`as_longest`), never as a number.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rotorvib.comparison import Margin
+
+
+def timed(value: float, uncertainty: float) -> Margin:
+    """A margin in seconds between balance times, known to ``uncertainty`` (s)."""
+    return Margin(value, uncertainty, "s", "balance times to the integration's accuracy "
+                                           "(paper_b.claims.time_uncertainty)")
+
+
+def as_longest(times) -> np.ndarray:
+    """Balance times with a censored run (NaN: not balanced by t_end) as +inf, longer than any
+    balanced one, so that orderings stay defined."""
+    times = np.asarray(times, float)
+    return np.where(np.isnan(times), np.inf, times)
+
+
+def smallest_rise(curve) -> float:
+    """The smallest step up between neighbours of a balance-time curve (negative where it
+    falls; ``as_longest`` for censored runs).  Two censored neighbours are an order nothing
+    decides and are skipped; NaN when no pair is decided."""
+    c = as_longest(curve)
+    with np.errstate(invalid="ignore"):
+        steps = np.diff(c)
+    steps = steps[~np.isnan(steps)]
+    return float(np.min(steps)) if steps.size else np.nan
+
+
+def rise(curve) -> float:
+    """How much longer the last balance time of a curve is than the first (``as_longest`` for
+    censored runs; NaN when both are censored)."""
+    c = as_longest(curve)
+    with np.errstate(invalid="ignore"):
+        return float(c[-1] - c[0])
+
+
+def dip_depth(curve) -> float:
+    """How far a curve's lowest point lies below both its ends (<= 0 when the lowest point is an
+    end): a curve that first falls and then grows."""
+    c = as_longest(curve)
+    k = int(np.argmin(c))
+    with np.errstate(invalid="ignore"):
+        return float(min(c[0] - c[k], c[-1] - c[k]))
+
+
+def within(values, band) -> float:
+    """How far every value lies inside ``band`` (negative: outside by that much)."""
+    lo, hi = band
+    values = np.asarray(values, float)
+    return float(np.min(np.minimum(values - lo, hi - values)))
+
+
+def mean_over_ics(ds: xr.DataArray) -> xr.DataArray:
+    """Mean balance time over the initial conditions; NaN if any run is censored."""
+    return ds.mean("ic", skipna=False)
+
+
+def share_balanced_by(times, t) -> float:
+    """The share of runs balanced by time ``t``: the empirical distribution function of the
+    balance ``times`` at ``t``, a censored run (NaN: not balanced by the end) counting as
+    longer than any time. Over a uniform grid of initial ball positions it is the chance that
+    balls placed at random balance by ``t``; at an initial condition's own time, its
+    percentile."""
+    times = np.asarray(times, float).ravel()
+    return float(np.count_nonzero(times <= t) / times.size)
+
+
+def faster_share(times, t) -> float:
+    """The share of runs of ``times`` no slower than an initial condition balanced at ``t``:
+    :func:`share_balanced_by` for a balanced one, and for a censored one (NaN) the share
+    balanced at all, since it is slower than every balanced run."""
+    return share_balanced_by(times, t) if np.isfinite(t) else share_balanced_by(times, np.inf)
