@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from rotorvib.pipeline.config import ConfigError, load_yaml, validate_config
-from rotorvib.pipeline.config_checks import existence_problems, study_problem
+from rotorvib.pipeline import config_checks
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = load_yaml(ROOT / "config/schema.yaml")
@@ -73,7 +73,9 @@ CASES = [
     ("paper_b.balance_studies.beta.fixed", {}, "paper_b.balance_studies.beta"),
     ("paper_b.ga.pop_size", 1, None), ("paper_b.ga.mass", [0.001, 0.02], None),
     ("paper_b.ga.beta", [1.0, 0.1], None), ("paper_b.ga.censored_penalty", 0.5, None),
-    ("paper_b.ga.eps_bar", [NAN], "paper_b.ga.eps_bar.0"), ("paper_b.table1.speeds", [], None),
+    ("paper_b.ga.eps_bar", [NAN], "paper_b.ga.eps_bar.0"),
+    ("paper_b.ga.spread_seeds", [1, 2, 3], None), ("paper_b.ga.spread_seeds", [1, 2, 2, 3], None),
+    ("paper_b.ga.spread_seeds", [1, 2, 3, 2014], None), ("paper_b.table1.speeds", [], None),
     ("paper_b.table1.mass.min", 0.003, None),
     ("paper_b.table2.cases", [[1.0, 0.001]], "paper_b.table2.cases.0"),
     ("paper_b.table2.ic", "IC4", None), ("paper_b.calibration.R.n", 1.0, None),
@@ -115,15 +117,12 @@ def _set(config: dict, dotted: str, value) -> dict:
 
 def problems(config: dict) -> str:
     """The messages of the checks run before any job: the schema and its extensions, then
-    paper B's study and existence rules."""
+    every check beyond the schema (rotorvib.pipeline.config_checks)."""
     try:
         filled = validate_config(config, SCHEMA)
     except ConfigError as error:
         return str(error)
-    b = filled["paper_b"]
-    studies = [f"'paper_b.balance_studies.{name}': {p}" for name, s in
-               b["balance_studies"].items() if (p := study_problem(s))]
-    return "\n".join(studies + existence_problems(b))
+    return "\n".join(config_checks.problems(filled))
 
 
 def test_the_paper_configuration_passes():

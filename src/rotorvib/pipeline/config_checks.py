@@ -89,7 +89,8 @@ def run_budget_problems(b: dict) -> list[str]:
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
-    run, a ball mass below the existence bound, a run the engine would refuse."""
+    run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
+    below the existence bound, a run the engine would refuse."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -99,4 +100,7 @@ def problems(config: dict) -> list[str]:
                         ("paper_c.uncertainty", config["paper_c"]["uncertainty"])):
         if problem := sobol_design_problem(sample["n_base"], sample["convergence"]):
             found.append(f"config key '{key}': {problem}")
+    if b["ga"]["seed"] in b["ga"]["spread_seeds"]:
+        found.append(f"config key 'paper_b.ga.spread_seeds': must not contain paper_b.ga.seed "
+                     f"({b['ga']['seed']}), whose optimum it would count twice")
     return found + existence_problems(b) + run_budget_problems(b)
