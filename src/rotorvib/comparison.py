@@ -30,8 +30,8 @@ from pathlib import Path
 from rotorvib.io.tables import write_table
 
 COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reproduced",
-           "rel_error", "margin", "uncertainty", "margin_unit", "margin_basis", "verdict",
-           "finding", "explanation")
+           "rel_error", "paper_says", "margin", "uncertainty", "margin_unit", "margin_basis",
+           "verdict", "finding", "explanation")
 SOURCES = ("printed", "chosen", "theory")
 MATCH_TOL = 0.01
 MINOR_TOL = 0.10
@@ -205,9 +205,14 @@ def _float_or_none(text: str) -> float | None:
 
 
 def read_paper_values(path: str | Path) -> list[dict]:
+    """The rows of the paper-values file; ``ValueError`` for a row with more fields than the
+    header (an unquoted comma would cut a claim's text short) or an unknown source."""
     with open(path, newline="", encoding="utf-8") as fh:
         rows = [row for row in csv.DictReader(fh) if not row["paper"].startswith("#")]
     for row in rows:
+        if None in row:
+            raise ValueError(f"{path}: {row['quantity']}: more fields than the header "
+                             f"({row[None]!r}): quote a text that holds a comma")
         row["value_text"] = row["value"]
         row["value"] = _float_or_none(row["value"])
         if row["source"] not in SOURCES:
@@ -269,6 +274,15 @@ def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
                              *_margin_cells(r.margin), r.explanation])
 
 
+def paper_says(value_row: dict) -> str:
+    """A claim's sentence as the paper words it (English rendering of the quote in the
+    paper-values file, with where it stands), or empty for a number or a claim of our own."""
+    quote, where = value_row.get("quote_en", ""), value_row.get("quote_where", "")
+    if quote:
+        return f'"{quote}" ({where})'
+    return f"({where})" if where else ""
+
+
 def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[dict]:
     """Join paper values and reproduced values; every paper value must be reproduced exactly once.
 
@@ -307,7 +321,7 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
         table.append({"paper": p["paper"], "item": p["item"], "quantity": p["quantity"],
                       "unit": p["unit"], "source": p["source"], "paper_value": p["value"],
                       "reproduced": r.reproduced, "rel_error": rel, "verdict": verdict_,
-                      "explanation": explanation,
+                      "explanation": explanation, "paper_says": paper_says(p),
                       **dict(zip(MARGIN_COLUMNS, _margin_values(r.margin)))})
     return with_findings(table)
 

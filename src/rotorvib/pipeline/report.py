@@ -120,7 +120,8 @@ def _number(value) -> str:
 def statement(row: dict, claim: str = "", lead: str = "") -> str:
     """One comparison row as a reST bullet: what the paper states (``claim``, else the
     quantity's name), what we find (a claim: its margin and the margin's uncertainty), the
-    verdict and its explanation; ``lead`` replaces the verdict and item at the start."""
+    paper's own words where the row quotes them, the verdict and its explanation; ``lead``
+    replaces the verdict and item at the start."""
     said = claim or row["quantity"]
     if row["paper_value"] not in ("", None):
         unit = f" {row['unit']}" if row["unit"] not in ("", "1", None) else ""
@@ -134,7 +135,8 @@ def statement(row: dict, claim: str = "", lead: str = "") -> str:
     lead = f"**{rst_text(lead)}**" if lead else f"**{row['verdict']}** ({rst_text(row['item'])})"
     # a claim's explanation quotes each variant, "printed: ... | consistent: ..."
     explanation = f" {rst_text(row['explanation'].replace(' | ', '; '))}" if row["explanation"] else ""
-    return f"- {lead} {rst_text(said)}.{explanation}"
+    says = f" The paper: {rst_text(row['paper_says'])}." if row.get("paper_says") else ""
+    return f"- {lead} {rst_text(said)}.{says}{explanation}"
 
 
 def caption(title: str, shows: str, rows: list[dict] | None = None,
