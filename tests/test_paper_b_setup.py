@@ -237,16 +237,23 @@ def test_the_gap_to_the_front_is_measured_at_no_more_force():
     assert row.holds == (("", True),) and row.margin.value == pytest.approx(0.5)
 
 
-def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
-    """A lighter ball than the existence bound m/M >= eps_bar/2 never balances: its times are
-    t_end and it is flagged; a nominal run gives the engine's own numbers; a case with fixed
-    initial conditions averages over them and has no ball-position inputs."""
-    from rotorvib.papers.b.uncertainty import case_inputs, run_case
+def test_an_uncertainty_run_without_a_time_has_none_and_the_closed_form_predicts_which(setup):
+    """Ball masses below the existence bound m/M >= eps_bar/2 leave a residual whirl; the
+    closed form (residual_whirl against the threshold) says which runs balance, and the engine
+    agrees: a run that never balances has NaN times (never t_end, a cap), is flagged, and a
+    nominal run gives the engine's own numbers; a case over fixed ICs averages over them."""
+    from rotorvib.papers.b.uncertainty import residual_whirl, run_case
 
-    case = {"beta": 0.2, "mass": 0.006, "eps_bar": 0.012, "speed": 220.0}
-    x = [[0.1, 0.01, 1e-3, 40.0, 45.0, 0.0, 0.0, 0.0],
-         [0.1, 0.01, 1e-3, 40.0, 45.0, 0.0, -0.2, 0.0]]
+    case = {"beta": 0.2, "mass": 0.006, "eps_bar": 0.012, "speed": 220.0,
+            "phi0_deg": (40.0, 45.0)}
+    offsets = [0.0, -0.03, -0.1, -0.2]
+    x = [[0.1, 1e-3, 0.0, dm, 0.0] for dm in offsets]      # R, r0, eps, mass, k offsets
     out = run_case(setup, x, case, kinematics="printed")
+    whirl = residual_whirl(M=setup.M, n=setup.n, mass=0.006 * (1 + np.array(offsets)),
+                           eps_bar=0.012, R=0.1, k=setup.k, zeta=setup.zeta, speed=220.0)
+    assert whirl[0] == 0.0 and 0 < whirl[1] < setup.criterion.r_threshold < whirl[2] < whirl[3]
+    np.testing.assert_array_equal(out["balanced"], whirl < setup.criterion.r_threshold)
+    np.testing.assert_array_equal(np.isnan(out["balance_time"]), [False, False, True, True])
 
     def direct(phi):
         return run(engine.FIXED, *setup.run_inputs(mass=0.006, beta=0.2, eps_bar=0.012,
@@ -254,15 +261,33 @@ def test_the_uncertainty_runs_cap_unbalanced_times_at_t_end(setup):
                                                    speed=220.0), setup.criterion,
                    **setup.tolerances)
 
-    np.testing.assert_array_equal(out["balanced"], [1.0, 0.0])
     assert out["balance_time"][0] == direct((40.0, 45.0)).balance_time
     assert out["force_max"][0] == direct((40.0, 45.0)).force_max
-    assert out["balance_time"][1] == setup.criterion.t_end
     ics = {**case, "ics": [(40.0, 45.0), (110.0, 115.0)]}
-    assert "phi1" not in case_inputs(ics) and len(case_inputs(ics)) == 6
-    mean = run_case(setup, [[0.1, 0.01, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
+    mean = run_case(setup, [[0.1, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
     assert mean["balance_time"][0] == pytest.approx(
         np.mean([direct(p).balance_time for p in ics["ics"]]), rel=1e-12)
+
+
+def test_the_calibrated_band_of_R_is_where_every_force_matches():
+    """Forces proportional to R, printed ones at R = 0.1: within 1 % every force matches for R
+    in [0.099, 0.101], found between grid radii 0.005 apart; no radius at all, or a band that
+    reaches the grid's end, is an error."""
+    import xarray as xr
+
+    from rotorvib.papers.b.uncertainty import calibrated_band
+
+    R = np.arange(0.05, 0.2001, 0.005)
+    printed = np.array([200.0, 120.0, 90.0])
+    forces = xr.Dataset({"force_max": (("kinematics", "case", "R"),
+                                       (printed[:, None] * R / 0.1)[None])},
+                        coords={"kinematics_name": ("kinematics", ["printed"]), "R": R})
+    lo, hi = calibrated_band(forces, printed, kinematics="printed")
+    assert (lo, hi) == (pytest.approx(0.099), pytest.approx(0.101))
+    with pytest.raises(ValueError, match="allows no band"):
+        calibrated_band(forces, 3 * printed, kinematics="printed", tolerance=0.01)
+    with pytest.raises(ValueError, match="reaches the end"):
+        calibrated_band(forces, printed, kinematics="printed", tolerance=0.6)
 
 
 def test_a_ga_that_never_balances_keeps_no_penalty_as_a_time(setup):

@@ -6,7 +6,7 @@ import xarray as xr
 from PIL import Image
 
 from rotorvib.io.plotting import (
-    INFORMATIVE_INTERVAL, STYLE, drawn_key, figure, paper_vline, parameters_text, save,
+    STYLE, drawn_key, figure, paper_vline, parameters_text, save,
     sensitivity)
 
 
@@ -86,22 +86,24 @@ def _study(balanced, times, conf):
          "ST": (("quantity", "n", "input"), np.full((2, 1, 2), 0.4)),
          "ST_conf": (("quantity", "n", "input"), np.array([[conf], [conf]], float)),
          "band": (("quantity", "percentile"), np.array([[1.0, 9.0], [0.0, 1.0]])),
-         "nominal": ("quantity", [3.0, 1.0])},
+         "nominal": ("quantity", [3.0, 1.0]),
+         "n_valued": ("quantity", [int(np.isfinite(times).sum()), n])},
         coords={"input_name": ("input", ["a", "b"]),
                 "quantity_name": ("quantity", ["balance_time", "balanced"]),
                 "quantity_units": ("quantity", ["s", "1"]), "n_base": ("n", [8]),
-                "percentile": ("percentile", [5.0, 95.0]), "sample": np.arange(n)})
+                "percentile": ("percentile", [5.0, 95.0]), "sample": np.arange(n)},
+        attrs={"sobol_resolved_half_width": 0.1})
 
 
-def test_the_uncertainty_figure_counts_capped_runs_apart_and_draws_decided_indices_only():
-    """A time capped at t_end is not drawn as a value: the distribution holds the balanced
-    runs, the others are counted in its title; an index whose interval is too wide to say
-    anything is named as undecided instead of drawn."""
-    ds = _study([1, 1, 1, 0], [2.0, 3.0, 4.0, 10.0], [0.05, INFORMATIVE_INTERVAL])
+def test_the_uncertainty_figure_counts_runs_without_a_time_apart_and_draws_resolved_indices():
+    """A run without a time (NaN) is not drawn: the distribution holds the runs with one, the
+    others are counted in its title; an index whose interval is wider than +/- 0.1 is named as
+    unresolved instead of drawn."""
+    ds = _study([1, 1, 1, 0], [2.0, 3.0, 4.0, np.nan], [0.05, 0.15])
     fig = sensitivity(ds, {"balance_time": 5.0}, "title")
     indices, times = fig.axes[0], fig.axes[1]
     assert len(indices.patches) == 1                       # input a only
-    assert [t.get_text() for t in indices.texts] == ["undecided"]
+    assert [t.get_text() for t in indices.texts] == ["unresolved (interval wider than +/- 0.1)"]
     assert sum(bar.get_height() for bars in times.containers for bar in bars) == 3
-    assert times.get_title() == "not balanced by t_end: 1 of 4"
+    assert times.get_title() == "no time by t_end: 1 of 4"
     assert fig.axes[3].get_title() == "3 of 4 input points balance"

@@ -60,7 +60,10 @@ def test_a_study_dataset_states_its_band_and_dominant_input():
     np.testing.assert_allclose(ds.band.values[0], np.percentile(y, [5, 50, 95]))
     (margin, uncertainty), text = band_statement(ds, "y", 5.0)
     assert margin == pytest.approx(5.0 - ds.band.values[0, 0]) and margin > uncertainty > 0
-    assert "largest total Sobol index: x1" in text and "nominal 5.5" in text
+    assert "largest total Sobol index: x1 (0.99 +/- 0.0" in text and "nominal 5.5" in text
+    _, text = band_statement(ds.isel(n_base=[0]), "y", 5.0)             # 64 base points
+    assert "the largest total Sobol index, x1 (1.01 +/- 0.26, 64 base points), is not " \
+           "resolved within +/- 0.1" in text
     (margin, uncertainty), _ = band_statement(ds, "y", 12.0)
     assert margin == pytest.approx(ds.band.values[0, -1] - 12.0) and 0 < uncertainty < 1
 
@@ -95,3 +98,25 @@ def test_an_output_that_does_not_vary_has_no_indices():
     assert np.all(np.isnan(ds.ST.values)) and np.all(np.isnan(ds.S1.values))
     (margin, uncertainty), text = band_statement(ds, "y", 1.0)
     assert margin == 0.0 and uncertainty == 0.0 and "does not vary" in text
+
+
+def test_a_band_holds_no_capped_value_and_an_output_without_values_has_no_index():
+    """y = x1 where x1 < 0.8, no value (NaN, a run that never balances) elsewhere: the band is
+    that of the valued points only -- never a cap at some t_end -- n_valued counts them, and
+    the indices, which need every point, are NaN; an index wider than +/- 0.1 is unresolved."""
+    from rotorvib.methods.sensitivity import RESOLVED_HALF_WIDTH, band_statement, study_dataset
+
+    spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
+    x = sample(spec, 256, seed=2)
+    y = np.where(x[:, 0] < 0.8, x[:, 0], np.nan)
+    ds = study_dataset(spec, x, {"t": y}, {"t": 0.5}, {"t": "s"}, n_bases=[256],
+                       resamples=50, seed=1)
+    valued = y[np.isfinite(y)]
+    assert int(ds.n_valued[0]) == valued.size < y.size
+    np.testing.assert_allclose(ds.band.values[0], np.percentile(valued, [5, 50, 95]))
+    assert ds.band.values[0, -1] < 0.8                      # no capped value inside
+    assert np.all(np.isnan(ds.ST.values))
+    _, text = band_statement(ds, "t", 0.5)
+    assert f"the {valued.size} of {y.size} input points where it has a value" in text
+    assert "no Sobol index (it needs a value at every point)" in text
+    assert RESOLVED_HALF_WIDTH == ds.attrs["sobol_resolved_half_width"] == 0.1

@@ -350,6 +350,9 @@ rule b_forces:
 
 
 rule b_uncertainty:
+    input:
+        forces=dataset("b", "forces"),
+        paper_values=PAPER_VALUES,
     output:
         dataset("b", "uncertainty_{case}"),
     log:

@@ -172,22 +172,19 @@ def save(fig, path: str | Path) -> Path:
     return path
 
 
-# A Sobol index is drawn only where its 95 % interval is narrower than this: a wider one says
-# nothing about the input at this sample size (the index lies in [0, 1] by definition).
-INFORMATIVE_INTERVAL = 0.5
 
 
 def sensitivity(ds, printed: dict[str, float], title: str):
     """One row per quantity of a sensitivity study (rotorvib.methods.sensitivity), two panels:
 
     - left, the total Sobol index of each input with its 95 % interval at the largest sample,
-      where that interval is narrower than :data:`INFORMATIVE_INTERVAL`; an input whose
-      interval is wider is named as undecided (estimates shown clipped to [0, 1]);
+      where that interval's half-width is at most the study's ``sobol_resolved_half_width``;
+      an input whose interval is wider is named as unresolved (estimates clipped to [0, 1]);
     - right, the quantity's distribution over the input points, its 5-95 % band (that of the
       comparison rows), its nominal value and the paper's (``printed``, by quantity). Where the
       study records whether a run balances (quantity ``balanced``), a time (unit s) is drawn
-      for the balanced runs only, the others counted apart (their time is t_end, a cap, not a
-      value), and the ``balanced`` row is the share of runs that balance."""
+      for the balanced runs only, the others counted apart (they have no time), and the
+      ``balanced`` row is the share of runs that balance."""
     names = [str(n) for n in ds.input_name.values]
     quantities = [str(q) for q in ds.quantity_name.values]
     balanced = (ds.y.values[quantities.index("balanced")] == 1) if "balanced" in quantities \
@@ -199,13 +196,15 @@ def sensitivity(ds, printed: dict[str, float], title: str):
         units = str(ds.quantity_units.values[q])
         ax = axes[q, 0]
         st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
-        constant = bool(np.all(np.isnan(st)))
-        decided = ~np.isnan(conf) & (2 * conf < INFORMATIVE_INTERVAL)
+        valued = int(ds.n_valued[q]) == ds.sizes["sample"] if "n_valued" in ds else True
+        limit = float(ds.attrs["sobol_resolved_half_width"])
+        why = (f"unresolved (interval wider than +/- {limit:g})" if not np.all(np.isnan(st))
+               else "constant output" if valued else "no index: some runs have no value")
+        decided = ~np.isnan(conf) & (conf <= limit)
         ax.barh(position[decided], np.clip(st[decided], 0, 1), xerr=conf[decided], color="C1",
                 capsize=2, label="total index, 95 % interval")
         for i in np.flatnonzero(~decided):
-            ax.text(0.01, i, "undecided" if not constant else "constant output", va="center",
-                    fontsize=7, color="0.45")
+            ax.text(0.01, i, why, va="center", fontsize=7, color="0.45")
         ax.set_yticks(position, names, fontsize=8)
         ax.invert_yaxis()
         ax.set(xlim=(0, 1.05), xlabel=f"total Sobol index of {quantity}",
@@ -222,17 +221,18 @@ def sensitivity(ds, printed: dict[str, float], title: str):
             ax.set(xlim=(0, 1), xlabel="share of input points",
                    title=f"{balanced.sum()} of {balanced.size} input points balance")
             continue
-        timed = units == "s" and not balanced.all()
-        shown = y[balanced] if timed else y
+        timed = units == "s" and not np.isfinite(y).all()
+        shown = y[np.isfinite(y)]
         ax.hist(shown, bins=30, color="0.6",
                 label=f"balanced runs ({shown.size})" if timed else "input points")
         ax.axvspan(lo, hi, color="C0", alpha=0.12, label=f"{ds.percentile.values[0]:g}-"
-                   f"{ds.percentile.values[-1]:g} % band of all points")
+                   f"{ds.percentile.values[-1]:g} % band of the "
+                   + ("balanced runs" if timed else "input points"))
         ax.axvline(float(ds.nominal[q]), color="k", lw=1.2, label="reproduction (nominal)")
         if quantity in printed:
             paper_vline(ax, printed[quantity], f"{printed[quantity]:g} {units}")
         ax.set(xlabel=f"{quantity} ({units})", ylabel="input points",
-               title=f"not balanced by t_end: {(~balanced).sum()} of {balanced.size}"
+               title=f"no time by t_end: {(~np.isfinite(y)).sum()} of {y.size}"
                if timed else "distribution over the input ranges")
         ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 4))
         ax.legend(fontsize=7)

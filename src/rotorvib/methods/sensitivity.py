@@ -22,6 +22,12 @@ from SALib.sample import sobol as sobol_sample
 from rotorvib.checks import finite_array, integer, sobol_design_problem
 
 
+#: A total index is reported only where the half-width of its 95 % interval is at most this:
+#: a wider interval says too little about the input at the sample size (the index lies in
+#: [0, 1]); the study states such an index as unresolved.
+RESOLVED_HALF_WIDTH = 0.1
+
+
 def problem(ranges: dict[str, tuple[float, float]]) -> dict:
     """SALib's problem for inputs ``name -> (low, high)``, each uniform; ``ValueError`` naming
     an input whose range is not finite and increasing."""
@@ -68,10 +74,17 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
                   resamples: int, seed: int, percentiles=(5.0, 50.0, 95.0)) -> xr.Dataset:
     """A sensitivity study as a dataset: the inputs ``x`` and ``outputs`` (quantity -> values
     at ``x``), the indices of every quantity at each of ``n_bases``, the ``percentiles`` of
-    each quantity over all evaluations (its uncertainty band) and its ``nominal`` value."""
+    each quantity over its evaluations (its uncertainty band) and its ``nominal`` value.
+
+    An output may be NaN where it has no value (a run that never balances has no balance
+    time): its band is then over the points with a value only (``n_valued`` counts them, never
+    a cap or penalty in their place), and its indices, which need every point, are NaN."""
     names = list(outputs)
+    valued = {q: np.isfinite(np.asarray(outputs[q], float)) for q in names}
+    undefined = {key: np.full((len(n_bases), spec["num_vars"]), np.nan)
+                 for key in ("S1", "S1_conf", "ST", "ST_conf")}
     indices = {q: sobol_indices(spec, outputs[q], n_bases, resamples=resamples, seed=seed)
-               for q in names}
+               if valued[q].all() else undefined for q in names}
     dims = ("quantity", "n_base", "input")
     data = {key: (dims, np.stack([indices[q][key] for q in names]),
                   {"long_name": text, "units": "1"})
@@ -82,9 +95,15 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
     y = np.stack([np.asarray(outputs[q], float) for q in names])
     data["y"] = (("quantity", "sample"), y, {"long_name": "model output at each input point "
                                                           "(units by quantity)", "units": "1"})
-    data["band"] = (("quantity", "percentile"), np.percentile(y, percentiles, axis=1).T,
-                    {"long_name": "percentiles of the output over the input ranges (units by "
-                                  "quantity)", "units": "1"})
+    with np.errstate(invalid="ignore"):
+        band = np.array([np.percentile(row[np.isfinite(row)], percentiles) if np.isfinite(row).any()
+                         else np.full(len(percentiles), np.nan) for row in y])
+    data["band"] = (("quantity", "percentile"), band,
+                    {"long_name": "percentiles of the output over the input points where it has "
+                                  "a value (units by quantity)", "units": "1"})
+    data["n_valued"] = ("quantity", np.array([int(valued[q].sum()) for q in names], np.int64),
+                        {"long_name": "input points at which the output has a value (a run "
+                                      "that never balances has no balance time)", "units": "1"})
     data["nominal"] = ("quantity", [float(nominal[q]) for q in names],
                        {"long_name": "output at the nominal inputs (units by quantity)",
                         "units": "1"})
@@ -108,14 +127,17 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
                            {"long_name": "base points of Saltelli's scheme", "units": "1"}),
                 "percentile": ("percentile", np.asarray(percentiles, float),
                                {"long_name": "percentile of the output", "units": "1"})},
-        attrs={"sobol_resamples": resamples, "sobol_seed": seed},
+        attrs={"sobol_resamples": resamples, "sobol_seed": seed,
+               "sobol_resolved_half_width": RESOLVED_HALF_WIDTH},
     )
 
 
 def edge_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
-    """Standard deviation of each of ``percentiles`` of the sample ``y`` over ``resamples``
-    bootstrap resamples: how well a finite sample pins a band's edges."""
+    """Standard deviation of each of ``percentiles`` of the sample ``y`` (its values; NaN
+    marks a point without one) over ``resamples`` bootstrap resamples: how well a finite sample
+    pins a band's edges."""
     y = np.asarray(y, float)
+    y = y[np.isfinite(y)]
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, y.size, (resamples, y.size))
     return np.percentile(y[draws], percentiles, axis=1).std(axis=1)
@@ -137,19 +159,29 @@ def band_margin(ds: xr.Dataset, quantity: str, value: float) -> tuple[float, flo
 def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[tuple[float, float], str]:
     """``value``'s margin inside the outer percentiles of ``quantity``'s band with its
     uncertainty (:func:`band_margin`), and a sentence with the band, the nominal value and the
-    input of largest total index (with its interval) at the largest sample."""
+    input of largest total index (with its interval) at the largest sample, said to be
+    unresolved where its interval is wider than :data:`RESOLVED_HALF_WIDTH`."""
     q = list(ds.quantity_name.values).index(quantity)
     band, units = ds.band.values[q], str(ds.quantity_units.values[q])
     lo, hi = band[0], band[-1]
     st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
     p = ds.percentile.values
-    if np.all(np.isnan(st)):
+    valued, points = int(ds.n_valued[q]), ds.sizes["sample"]
+    if valued < points:
+        driver = "no Sobol index (it needs a value at every point)"
+    elif np.all(np.isnan(st)):
         driver = "it does not vary over them (no Sobol index)"
     else:
         top = int(np.nanargmax(st))
-        driver = (f"largest total Sobol index: {ds.input_name.values[top]} ({st[top]:.2f} +/- "
-                  f"{conf[top]:.2f}, {int(ds.n_base[-1])} base points)")
+        index = (f"{ds.input_name.values[top]} ({st[top]:.2f} +/- {conf[top]:.2f}, "
+                 f"{int(ds.n_base[-1])} base points)")
+        driver = (f"largest total Sobol index: {index}" if conf[top] <= RESOLVED_HALF_WIDTH
+                  else f"the largest total Sobol index, {index}, is not resolved within "
+                       f"+/- {RESOLVED_HALF_WIDTH:g}")
+    over = ("the input ranges" if valued == points else
+            f"the {valued} of {points} input points where it has a value (the others never "
+            "balance by t_end)")
     return band_margin(ds, quantity, value), (
         f"{value:.4g} {units} against the {p[0]:g}-{p[-1]:g} % band {lo:.4g}-{hi:.4g} {units} "
-        f"(median {band[len(band) // 2]:.4g}, nominal {float(ds.nominal[q]):.4g}) over the "
-        f"input ranges; {driver}")
+        f"(median {band[len(band) // 2]:.4g}, nominal {float(ds.nominal[q]):.4g}) over "
+        f"{over}; {driver}")

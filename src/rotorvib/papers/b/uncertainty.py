@@ -1,13 +1,23 @@
 """Beyond paper B: how sure are its headline numbers?
 
-The peak bearing force, its decay time and the balance time of a run of paper B depend on
-inputs the paper leaves uncertain or that vary in practice: the inferred race radius R, the
-support damping zeta, the initial amplitude r(0), the balls' initial positions (uniform over
-the circle), and relative offsets (tolerances) of the eccentricity, the ball mass and the
-support stiffness.  Each is uniform on its range (config, with reasons).  For each case (a
-design and operating point of the paper: Table 2's optimum row, Fig 7), Sobol indices say which
-input drives each quantity, and the 5-95 % band of each quantity over the ranges says whether a
-printed value lies within input uncertainty of its reproduction.
+The peak bearing force, its decay time and the balance times of a run of paper B depend on
+inputs the paper does not state or that vary in practice, each uniform on a range with a
+source or a reason:
+
+- the race radius R, not printed: every R whose reproduced Table 2 peak forces all match the
+  printed ones (within the comparison's MATCH tolerance) -- the band the calibration allows
+  (:func:`calibrated_band`);
+- the initial amplitude r(0), and relative offsets (tolerances) of the eccentricity, the ball
+  mass and the support stiffness (config, with reasons).  The eccentricity stays at or below
+  the design's eps_max, which eq. (41) sizes the balls for; an eccentricity beyond it is the
+  separate overload question (:func:`balances_in_closed_form`).
+
+What the paper states for every run -- the support damping zeta, the balls' initial positions
+(eq. 39) -- is not varied: a distribution over random ball positions is another quantity (the
+basin study).  For each case (Table 2's optimum row, Fig 7, Table 1's mean over the ICs),
+Sobol indices say which input drives each quantity, and its 5-95 % band says whether a printed
+value lies within input uncertainty of its reproduction.  A run that never balances has no
+time: the bands of times are over the runs that balance, and ``balanced`` gives their share.
 """
 
 from __future__ import annotations
@@ -19,70 +29,123 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, Reproduced, within_band
+from rotorvib.comparison import MATCH_TOL, Margin, Reproduced, within_band
+from rotorvib.io.coords import pick
 from rotorvib.methods.sensitivity import band_statement, problem, sample, study_dataset
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 
-INPUTS = ("R", "zeta", "r0", "phi1", "phi2", "eps_tolerance", "mass_tolerance", "k_tolerance")
-#: quantity -> units; the times are capped at t_end, ``balanced`` is 1 for a run that balances
+INPUTS = ("R", "r0", "eps_tolerance", "mass_tolerance", "k_tolerance")
+#: quantity -> units; a time is NaN for a run without one, ``balanced`` is 1 for a run that
+#: balances
 QUANTITIES = {"force_max": "N", "force_decay_time": "s", "balance_time": "s",
               "envelope_time": "s", "balanced": "1"}
 _claim = partial(Reproduced.claim, "B")
 
 
-def case_inputs(case: dict) -> tuple[str, ...]:
-    """The uncertain inputs of ``case``: all of :data:`INPUTS`, but the ball positions when
-    the case fixes its own (``ics``: a quantity defined as a mean over initial conditions)."""
-    return tuple(n for n in INPUTS if not (case.get("ics") and n in ("phi1", "phi2")))
+def calibrated_band(forces: xr.Dataset, printed, *, kinematics: str,
+                    tolerance: float = MATCH_TOL) -> tuple[float, float]:
+    """The race radii R whose reproduced peak forces of Table 2's rows (``forces``, the
+    calibration over R) all lie within ``tolerance`` (relative) of the ``printed`` ones: where
+    the largest relative error, linear between the grid's radii, is at most ``tolerance``.
+    ``ValueError`` if no radius of the grid qualifies or the band reaches the grid's end."""
+    at = pick(forces, kinematics=kinematics)
+    R = at.R.values
+    printed = np.asarray(printed, float)
+    worst = np.max(np.abs(at.force_max.values - printed[:, None]) / printed[:, None], axis=0)
+    inside = worst <= tolerance
+    if not inside.any():
+        raise ValueError(f"no race radius of paper_b.calibration.R reproduces Table 2's peak "
+                         f"forces within {tolerance:.0%}: the calibration allows no band")
+    first, last = np.flatnonzero(inside)[[0, -1]]
+    if first == 0 or last == R.size - 1:
+        raise ValueError("the calibrated band of R reaches the end of paper_b.calibration.R: "
+                         "widen the grid")
+
+    def crossing(i, j):             # the radius between R[i] and R[j] where worst = tolerance
+        return float(np.interp(tolerance, [worst[i], worst[j]], [R[i], R[j]])
+                     if worst[i] < worst[j] else
+                     np.interp(tolerance, [worst[j], worst[i]], [R[j], R[i]]))
+
+    return crossing(first, first - 1), crossing(last, last + 1)
+
+
+def residual_whirl(*, M: float, n: int, mass, eps_bar, R, k, zeta: float, speed: float):
+    """Steady whirl radius (m) left when the balls cannot cancel the unbalance.  Eq. (33) has no
+    balanced state when n m R < M eps: then the balls gather opposite the mass centre and the
+    residual eccentricity of the whole rotor is e = (M eps_bar R - n m R) / (M + n m) (0 when
+    the balls suffice); a Jeffcott rotor of mass M + n m on the support (k, c = 2 zeta sqrt(M k))
+    whirls at e w^2 / sqrt((w_n^2 - w^2)^2 + (c w / (M + n m))^2), w_n^2 = k / (M + n m).
+    Arguments broadcast."""
+    mass, eps_bar, R, k = (np.asarray(v, float) for v in (mass, eps_bar, R, k))
+    total = M + n * mass
+    e = np.maximum(M * eps_bar * R - n * mass * R, 0.0) / total
+    c = 2 * zeta * np.sqrt(M * k)
+    return e * speed**2 / np.hypot(k / total - speed**2, c * speed / total)
+
+
+def balances_in_closed_form(ds: xr.Dataset, x, *, mass_tolerance=None, eps_offsets=None):
+    """Whether each input point of an uncertainty case balances by the criterion, predicted in
+    closed form: its :func:`residual_whirl` below ``r_threshold``.  ``x`` holds the points'
+    inputs (in the dataset's order); given ``mass_tolerance`` and ``eps_offsets`` (each
+    ``(lo, hi)``), a fine uniform grid of those offsets at the nominal R and k takes the points'
+    place (the overload question)."""
+    a = ds.attrs
+    if eps_offsets is not None:
+        dm, de = np.meshgrid(np.linspace(*mass_tolerance, 401), np.linspace(*eps_offsets, 401))
+        R, k = a["nominal_R"], a["support_k"]
+    else:
+        v = dict(zip([str(n) for n in ds.input_name.values], np.asarray(x, float).T))
+        dm, de, R = v["mass_tolerance"], v["eps_tolerance"], v["R"]
+        k = a["support_k"] * (1 + v["k_tolerance"])
+    r = residual_whirl(M=a["disk_mass"], n=a["balls"], mass=a["design_mass"] * (1 + dm),
+                       eps_bar=a["nominal_eps_bar"] * (1 + de), R=R, k=k,
+                       zeta=a["support_zeta"], speed=a["speed"])
+    return r < a["r_threshold"]
 
 
 def run_case(setup: Setup, x, case: dict, *, kinematics: str) -> dict[str, np.ndarray]:
-    """The quantities of :data:`QUANTITIES` at each input point ``x[:, case_inputs(case)]``
-    for ``case`` (``beta``, ``mass``, ``eps_bar``, ``speed`` or None for the configured
-    run-up, and ``ics``, a list of ball positions, when the quantities are means over them),
-    all runs in one batch.  A run that does not balance (or whose force does not decay) by
-    ``t_end`` has no time: its time is capped at ``t_end`` (the quantities are ``min(time,
-    t_end)``, exact below the cap) and ``balanced`` says which runs balanced."""
-    names = case_inputs(case)
+    """The quantities of :data:`QUANTITIES` at each input point ``x[:, INPUTS]`` for ``case``
+    (``beta``, ``mass``, ``eps_bar``, ``speed`` or None for the configured run-up, and its ball
+    positions: ``phi0_deg``, or ``ics``, a list of them, when the quantities are means over
+    them), all runs in one batch.  A run that does not balance (or whose force does not decay)
+    by ``t_end`` has no time: NaN, and a mean over ICs with such a run is NaN too."""
     inputs = []
+    positions = case.get("ics") or [case["phi0_deg"]]
     for row in np.asarray(x, float):
-        v = dict(zip(names, row))
-        positions = case.get("ics") or [(v["phi1"], v["phi2"])]
+        v = dict(zip(INPUTS, row))
         s = replace(setup, k=setup.k * (1 + v["k_tolerance"]), r0=v["r0"])
         inputs += [s.run_inputs(mass=case["mass"] * (1 + v["mass_tolerance"]),
                                 eps_bar=case["eps_bar"] * (1 + v["eps_tolerance"]),
                                 beta=case["beta"], phi0_deg=tuple(phi), kinematics=kinematics,
-                                speed=case["speed"], R=v["R"], zeta=v["zeta"])
+                                speed=case["speed"], R=v["R"])
                    for phi in positions]
     metrics = setup.runs(inputs, progress=False)
-    metrics = metrics.reshape(len(x), len(inputs) // len(x), -1)
-    t_end = setup.criterion.t_end
+    metrics = metrics.reshape(len(x), len(positions), -1)
 
-    def capped(time, flag):
-        return np.where(metric(metrics, flag) == 1, metric(metrics, time), t_end).mean(axis=1)
+    def timed(time, flag):
+        return np.where(metric(metrics, flag) == 1, metric(metrics, time), np.nan).mean(axis=1)
 
     return {"force_max": metric(metrics, "force_max").mean(axis=1),
-            "force_decay_time": capped("force_decay_time", "force_decayed"),
-            "balance_time": capped("balance_time", "balanced"),
-            "envelope_time": capped("envelope_time", "envelope_balanced"),
+            "force_decay_time": timed("force_decay_time", "force_decayed"),
+            "balance_time": timed("balance_time", "balanced"),
+            "envelope_time": timed("envelope_time", "envelope_balanced"),
             "balanced": (metric(metrics, "balanced") == 1).mean(axis=1)}
 
 
-def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, kinematics: str,
+def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinematics: str,
                         n_base: int, convergence, resamples: int, seed: int) -> xr.Dataset:
     """Sobol indices and bands of the quantities of ``case`` (``name``, ``title``, ``beta``,
     ``mass``, ``eps_bar``, ``speed`` or None, ``phi0_deg`` or ``ics``, and ``printed``: the
-    paper's values to set against the bands, quantity -> key in the paper values) over ``ranges``
-    (input -> ``[low, high]``, keys :func:`case_inputs`); the nominal run is the case as the
-    paper runs it: R, zeta and r(0) of ``setup``, its ball positions, no tolerances."""
-    names = case_inputs(case)
-    spec = problem({name: tuple(ranges[name]) for name in names})
+    paper's values to set against the bands, quantity -> key in the paper values) over
+    ``ranges`` (input -> ``[low, high]`` for every input but R) and ``R_band``
+    (:func:`calibrated_band`); the nominal run is the case as the paper runs it: R and r(0)
+    of ``setup``, no tolerances."""
+    spec = problem({"R": tuple(R_band), **{name: tuple(ranges[name]) for name in INPUTS[1:]}})
     x = sample(spec, n_base, seed)
     run = partial(run_case, setup, case=case, kinematics=kinematics)
-    at = {"R": setup.R, "zeta": setup.zeta, "r0": setup.r0,
-          **dict(zip(("phi1", "phi2"), case.get("phi0_deg", ())))}
-    nominal = {q: v[0] for q, v in run([[at.get(n, 0.0) for n in names]]).items()}
+    at = {"R": setup.R, "r0": setup.r0}
+    nominal = {q: v[0] for q, v in run([[at.get(n, 0.0) for n in INPUTS]]).items()}
     ds = study_dataset(spec, x, run(x), nominal, QUANTITIES, n_bases=convergence,
                        resamples=resamples, seed=seed)
     speed = "the run-up" if case["speed"] is None else f"{case['speed']:g} rad/s"
@@ -93,10 +156,17 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, kinematics: s
         f"Beyond the paper: Sobol indices ({n_base} base points) and 5-95 % bands of the peak "
         f"bearing force, its decay time and the balance times{over} at beta = "
         f"{case['beta']:g}, m = {1e3 * case['mass']:g} g, eps_bar = {case['eps_bar']:g}, "
-        f"{speed} over the uncertain inputs", case["title"])
+        f"{speed} over the uncertain inputs (R within {R_band[0]:.4g}-{R_band[1]:.4g} m, the "
+        "band Table 2's forces allow)", case["title"])
     return ds.assign_attrs(case=case["name"], case_title=case["title"], design_beta=case["beta"],
                            design_mass=case["mass"], nominal_eps_bar=case["eps_bar"],
-                           disk_mass=setup.M, printed=json.dumps(case["printed"]), **attrs)
+                           disk_mass=setup.M, balls=setup.n, support_k=setup.k,
+                           support_zeta=setup.zeta, nominal_R=setup.R,
+                           speed=setup.omega if case["speed"] is None else case["speed"],
+                           r_threshold=setup.criterion.r_threshold,
+                           printed=json.dumps(case["printed"]),
+                           mass_tolerance=json.dumps(list(ranges["mass_tolerance"])),
+                           overload=float(ranges["overload"]), **attrs)
 
 
 def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reproduced]:
@@ -111,25 +181,32 @@ def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reprodu
 
 
 def balances_row(ds: xr.Dataset) -> Reproduced:
-    """Does the case balance over the whole input ranges?  States the share that does, the
-    inputs that decide it, and the case against the existence bound m/M >= eps_bar/2 (eq. 34)."""
+    """Does the case balance over the whole input ranges?  States the share that does, and how
+    many of the runs' outcomes the closed form (:func:`balances_in_closed_form`: the residual
+    whirl when eq. 34's existence bound fails, against the threshold) predicts; and the
+    overload question, the share with the eccentricity beyond the design's eps_max."""
     q = list(ds.quantity_name.values).index("balanced")
-    share = float(ds.y.values[q].mean())
-    st, conf, names = ds.ST.values[q, -1], ds.ST_conf.values[q, -1], ds.input_name.values
-    drivers = ("no input (it does not vary)" if np.all(np.isnan(st)) else
-               ", ".join(f"{names[i]} ({st[i]:.2f} +/- {conf[i]:.2f})"
-                         for i in np.argsort(-np.nan_to_num(st, nan=-1.0))[:2]))
+    balanced = ds.y.values[q] == 1
+    share = float(balanced.mean())
+    predicted = balances_in_closed_form(ds, ds.x.values)
+    masses = json.loads(ds.attrs["mass_tolerance"])
+    overload = float(balances_in_closed_form(ds, None, mass_tolerance=masses,
+                                             eps_offsets=(0.0, ds.attrs["overload"])).mean())
     ratio = ds.attrs["design_mass"] / ds.attrs["disk_mass"]
-    half = ds.attrs["nominal_eps_bar"] / 2
     return _claim("optimum_balances_within_tolerances",
                   Margin(share - 1.0, 0.0, "share of the input points",
                          "count over the sample (exact); a sample can find an input that does "
                          "not balance, never prove that all do"),
-                  f"{share:.1%} of the {ds.sizes['sample']} input points balance by t_end; "
-                  f"whether a run balances depends most on {drivers} (total Sobol indices): "
-                  f"the design has m/M = {ratio:.4g} against eps_bar/2 = {half:.4g} (eq. 34: a "
-                  "balanced state needs m/M >= eps_bar/2), a bound that a lighter ball or a "
-                  "larger eccentricity crosses")
+                  f"{share:.1%} of the {ds.sizes['sample']} input points balance by t_end. The "
+                  f"design has m/M = {ratio:.4g} against eps_bar/2 = "
+                  f"{ds.attrs['nominal_eps_bar'] / 2:.4g}, on eq. (34)'s existence bound: where "
+                  "a lighter ball or a larger eccentricity crosses it, the balls gather opposite "
+                  "the unbalance and leave a residual whirl, which balances by the criterion "
+                  f"while it stays below {1e3 * ds.attrs['r_threshold']:g} mm. That closed form "
+                  f"predicts {int(np.sum(predicted == balanced))} of the {balanced.size} "
+                  f"outcomes. Overload, a separate question: with the eccentricity up to "
+                  f"{ds.attrs['overload']:.0%} beyond eps_max and the ball mass within "
+                  f"{masses[0]:+.0%} to {masses[1]:+.0%}, it predicts {overload:.1%} balance")
 
 
 def uncertainty_rows(studies: dict[str, xr.Dataset], paper: dict) -> list[Reproduced]:
