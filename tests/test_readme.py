@@ -86,3 +86,25 @@ def test_the_workflow_catalog_usage_runs():
                          text=True, timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr
     assert (ROOT / "config/README.md").is_file()
+
+
+def test_the_readme_totals_are_generated_from_the_paper_configuration():
+    """The README's verdict totals sit between the generator's markers, name every verdict
+    group with as many rows as data/paper_values.csv gives it, and -- where a run of the paper
+    configuration has left results/comparison.csv -- are exactly what the generator writes
+    from it (after a change: snakemake -j2 comparison, then python -m
+    rotorvib.pipeline.readme results/comparison.csv README.md)."""
+    from rotorvib.comparison import VERDICT_GROUPS, group_of, read_paper_values
+    from rotorvib.pipeline.readme import BEGIN, END, read_table, totals_block, with_totals
+
+    block = README[README.index(BEGIN):README.index(END) + len(END)]
+    values = read_paper_values(ROOT / "data/paper_values.csv")
+    for name, _ in VERDICT_GROUPS:
+        rows = sum(group_of({"paper_value": v["value"], "source": v["source"]}) == name
+                   for v in values)
+        assert f"- {name} ({rows} rows, " in block, name
+    comparison = ROOT / "results/comparison.csv"
+    if comparison.is_file():
+        assert block == totals_block(read_table(comparison)), "regenerate the README's totals"
+    with pytest.raises(ValueError, match="markers missing"):
+        with_totals("no block here", [])
