@@ -65,3 +65,31 @@ def test_the_objectives_band_scales_with_the_tolerance(rotor, table2):
             abs(theta_eq20(rotor, dual_to_vector(table2), rotor.omega_n)), rel=1e-12)
         widths.append(ds.band.values[q, -1] - ds.band.values[q, 0])
     assert widths[1] / widths[0] == pytest.approx(2.0, rel=0.02)
+
+
+def test_a_broadband_claim_inside_the_seed_spread_is_undetermined():
+    """broadband_rows decides "below Den Hartog" only beyond half the range of the broadband
+    design's peak over the NSGA-II seeds (relative to the peak shown)."""
+    import xarray as xr
+
+    from rotorvib.comparison import claim_verdict
+    from rotorvib.papers.c.broadband import broadband_rows
+
+    def rows(by_seed, den_hartog):
+        ds = xr.Dataset(
+            {"peak": ("design", [4.0, 3.0, den_hartog, by_seed[0]]),
+             "added_mass": ("design", [0.37, 0.37, 0.37, 0.37]),
+             "front_band_peak": ("front", [3.0, 2.0]), "front_den_hartog_peak": ("front", [3.5, 2.5]),
+             "front_added_mass": ("front", [0.3, 0.4]), "tuned_mass_floor": ((), 0.39),
+             "broadband_peak_by_seed": ("seed", by_seed)},
+            coords={"design_key": ("design", ["table2", "single_frequency", "den_hartog",
+                                              "broadband"])})
+        return {r.quantity: r for r in broadband_rows(ds)}
+
+    clear = rows([2.0, 2.01, 1.99, 2.0, 2.0], den_hartog=2.2)      # 10 % below, seeds +/- 0.5 %
+    assert claim_verdict(clear["broadband_below_den_hartog"].holds) == "SUPPORTED"
+    noisy = rows([2.0, 2.35, 1.9, 2.1, 2.0], den_hartog=2.2)       # seeds +/- 11 %
+    row = noisy["broadband_below_den_hartog"]
+    assert claim_verdict(row.holds) == "UNDETERMINED"
+    assert row.margin.value == pytest.approx(0.1) and row.margin.uncertainty == pytest.approx(0.1125)
+    assert claim_verdict(noisy["broadband_below_table2"].holds) == "SUPPORTED"  # 50 % below

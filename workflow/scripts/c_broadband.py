@@ -18,13 +18,16 @@ p = snakemake.params
 rotor = Rotor(**p.rotor)
 b, fr, time = p.broadband, p.grid, p.time
 band_w = np.linspace(*b["band"], b["n_band"])
-front = broadband_front(rotor, p.bounds, band_w, **b["nsga"])
+nsga = {key: value for key, value in b["nsga"].items() if key != "spread_seeds"}
+front = broadband_front(rotor, p.bounds, band_w, **nsga)
+spread = [broadband_front(rotor, p.bounds, band_w, **{**nsga, "seed": seed})
+          for seed in b["nsga"]["spread_seeds"]]
 print(f"NSGA-II: {len(front.f)} designs on the front, {front.n_eval} evaluations",
       file=sys.stderr)
 t = response_times(rotor.omega_n, time["t_end"], time["samples_per_period"])
 ga = read_dataset(snakemake.input.ga, producers)
 ds = broadband_dataset(rotor, dual_absorber(**p.table2), ga.x_opt.values, b["den_hartog_d"],
                        front, band_w, np.linspace(fr["w_min"], fr["w_max"], fr["n_points"]), t,
-                       k_min=p.bounds["k"][0])
+                       k_min=p.bounds["k"][0], spread_fronts=spread)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p),
                                                   b["nsga"]["seed"]))

@@ -100,7 +100,9 @@ def problems(config: dict) -> list[str]:
                         ("paper_c.uncertainty", config["paper_c"]["uncertainty"])):
         if problem := sobol_design_problem(sample["n_base"], sample["convergence"]):
             found.append(f"config key '{key}': {problem}")
-    if b["ga"]["seed"] in b["ga"]["spread_seeds"]:
-        found.append(f"config key 'paper_b.ga.spread_seeds': must not contain paper_b.ga.seed "
-                     f"({b['ga']['seed']}), whose optimum it would count twice")
+    for key, ga in (("paper_b.ga", b["ga"]), ("paper_c.broadband.nsga",
+                                            config["paper_c"]["broadband"]["nsga"])):
+        if ga["seed"] in ga["spread_seeds"]:
+            found.append(f"config key '{key}.spread_seeds': must not contain {key}.seed "
+                         f"({ga['seed']}), whose result it would count twice")
     return found + existence_problems(b) + run_budget_problems(b)
