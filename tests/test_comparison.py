@@ -40,6 +40,8 @@ def test_claim_verdicts_from_variants():
     assert claim_verdict((("printed", False), ("consistent", False))) == "NOT SUPPORTED"
     assert claim_verdict((("printed", True), ("consistent", False))) == "DEPENDS"
     assert claim_verdict((("printed", True), ("consistent", None))) == "DEPENDS"
+    # fails under one variant, undecided under the other: it holds under none
+    assert claim_verdict((("printed", None), ("consistent", False))) == "UNDETERMINED"
     assert claim_verdict((("", None),)) == "UNDETERMINED"
     with pytest.raises(ValueError):
         claim_verdict(())

@@ -131,18 +131,17 @@ def relative_error(reference: float, value: float) -> float:
 
 
 def claim_verdict(holds) -> str:
-    """SUPPORTED / NOT SUPPORTED when every variant agrees, DEPENDS when they disagree,
-    UNDETERMINED when none decides."""
+    """SUPPORTED / NOT SUPPORTED when every variant decides and all agree; DEPENDS when it holds
+    under some variants but not all (failing or undecided under the others); UNDETERMINED when
+    it holds under none and some variant cannot decide (or none can)."""
     if not holds:
         raise ValueError("a claim needs at least one evaluated variant")
     known = [h for _, h in holds if h is not None]
-    if not known:
-        return "UNDETERMINED"
     if len(known) == len(holds) and all(known):
         return "SUPPORTED"
     if len(known) == len(holds) and not any(known):
         return "NOT SUPPORTED"
-    return "DEPENDS"
+    return "DEPENDS" if any(known) else "UNDETERMINED"
 
 
 def verdict(paper_value: float | None, reproduced: float | None, *, source: str = "printed",
