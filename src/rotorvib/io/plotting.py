@@ -180,6 +180,7 @@ def sensitivity(ds, printed: dict[str, float], title: str):
     - left, the total Sobol index of each input with its 95 % interval at the largest sample,
       where that interval's half-width is at most the study's ``sobol_resolved_half_width``;
       an input whose interval is wider is named as unresolved (estimates clipped to [0, 1]);
+      the title shows the convergence: the widest half-width at each sample size;
     - right, the quantity's distribution over the input points, its 5-95 % band (that of the
       comparison rows), its nominal value and the paper's (``printed``, by quantity). Where the
       study records whether a run balances (quantity ``balanced``), a time (unit s) is drawn
@@ -207,8 +208,12 @@ def sensitivity(ds, printed: dict[str, float], title: str):
             ax.text(0.01, i, why, va="center", fontsize=7, color="0.45")
         ax.set_yticks(position, names, fontsize=8)
         ax.invert_yaxis()
+        widest = [np.nanmax(c) if np.isfinite(c).any() else np.nan for c in ds.ST_conf.values[q]]
+        converging = ", ".join(f"{int(n)}: {w:.2f}" for n, w in zip(ds.n_base.values, widest)
+                               if np.isfinite(w))
         ax.set(xlim=(0, 1.05), xlabel=f"total Sobol index of {quantity}",
-               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)")
+               title=f"{int(ds.n_base[-1])} base points ({ds.sizes['sample']} input points)"
+               + (f"\nwidest +/- by base points, {converging}" if converging else ""))
         if decided.any():
             ax.legend(fontsize=7, loc="lower right")
         ax = axes[q, 1]
