@@ -40,6 +40,22 @@ def write_papers(app):
     _write(ROOT / "docs/_generated/papers.md", text)
 
 
+def write_api(app):
+    """docs/_generated/api.md: every module of the package with its public members, grouped by
+    package in the order of the layers (a module added to the package appears by itself)."""
+    import pkgutil
+
+    import rotorvib
+
+    modules = sorted(m.name for m in pkgutil.walk_packages(rotorvib.__path__, "rotorvib."))
+    order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers", "rotorvib.comparison",
+             "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.io", "rotorvib.pipeline"]
+    modules.sort(key=lambda m: (next(i for i, p in enumerate(order) if m.startswith(p)), m))
+    text = "".join(f"## `{m}`\n\n```{{eval-rst}}\n.. automodule:: {m}\n   :members:\n```\n\n"
+                   for m in modules)
+    _write(ROOT / "docs/_generated/api.md", text)
+
+
 def _write(path: Path, text: str) -> None:
     path.parent.mkdir(exist_ok=True)
     if not path.exists() or path.read_text() != text:
@@ -49,3 +65,4 @@ def _write(path: Path, text: str) -> None:
 def setup(app):
     app.connect("builder-inited", write_configuration_reference)
     app.connect("builder-inited", write_papers)
+    app.connect("builder-inited", write_api)

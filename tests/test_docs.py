@@ -107,3 +107,25 @@ def test_every_page_fits_the_window_and_every_link_leads_somewhere(site, browser
         missing = [href for href in local if not Path(href.removeprefix("file://")).exists()]
         assert not missing, (page.name, missing)
     view.close()
+
+
+def test_every_public_module_function_and_class_has_a_docstring():
+    """The API reference is generated from every module of the package: each module, and
+    each public function and class it defines, says what it is (the page would otherwise list
+    a bare signature)."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import rotorvib
+
+    bare = []
+    for info in pkgutil.walk_packages(rotorvib.__path__, "rotorvib."):
+        module = importlib.import_module(info.name)
+        if not (module.__doc__ or "").strip():
+            bare.append(info.name)
+        bare += [f"{info.name}.{name}" for name, obj in vars(module).items()
+                 if not name.startswith("_") and getattr(obj, "__module__", None) == info.name
+                 and (inspect.isfunction(obj) or inspect.isclass(obj))
+                 and not (obj.__doc__ or "").strip()]
+    assert not bare, bare

@@ -254,6 +254,7 @@ def _margin_cells(margin: Margin | None) -> list:
 
 
 def read_reproduced(path: str | Path) -> list[Reproduced]:
+    """The rows a paper's comparison-values script wrote (:func:`write_reproduced`)."""
     with open(path, newline="", encoding="utf-8") as fh:
         return [Reproduced(r["paper"], r["quantity"], _float_or_none(r["reproduced"]),
                            r["explanation"], _holds_from_text(r["holds"]),
@@ -263,6 +264,8 @@ def read_reproduced(path: str | Path) -> list[Reproduced]:
 
 
 def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
+    """Write reproduced rows as CSV (:data:`REPRODUCED_COLUMNS`); :func:`read_reproduced` reads
+    them back unchanged."""
     with open(path, "w", newline="", encoding="utf-8") as fh:
         writer = csv.writer(fh, lineterminator="\n")
         writer.writerow(REPRODUCED_COLUMNS)

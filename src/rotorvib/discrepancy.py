@@ -87,6 +87,8 @@ class Inversion:
 
 
 def reproduces(printed: float, value: float, tol: float = REPRODUCES_WITHIN) -> bool:
+    """Whether ``value`` reproduces the ``printed`` number: finite and within ``tol`` relative
+    error, ``|value - printed| <= tol |printed|``."""
     return bool(np.isfinite(value)) and relative_error(printed, value) <= tol
 
 

@@ -50,6 +50,8 @@ def warn_damaged(path: str | Path, what: str = "") -> None:
 
 
 def discard(path: str | Path) -> None:
+    """Remove a cache file if it is there; a file that cannot be removed is left for the next
+    writer to replace."""
     try:
         Path(path).unlink(missing_ok=True)
     except OSError:

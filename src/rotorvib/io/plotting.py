@@ -31,6 +31,7 @@ PAPER_STYLE = {"color": "crimson", "linestyle": "--", "linewidth": 1.2}
 
 
 def figure(nrows: int = 1, ncols: int = 1, **kwargs):
+    """``plt.subplots(nrows, ncols, **kwargs)`` in the project's style (:data:`STYLE`)."""
     with plt.rc_context(STYLE):
         return plt.subplots(nrows, ncols, **kwargs)
 
@@ -47,10 +48,12 @@ def paper_hline(ax, value: float, label: str) -> None:
 
 
 def paper_vline(ax, value: float, label: str) -> None:
+    """A vertical line at the paper's ``value``, labelled ``paper: label`` in the legend."""
     ax.axvline(value, **PAPER_STYLE, label=f"paper: {label}")
 
 
 def paper_point(ax, x: float, y: float, label: str) -> None:
+    """A star at the paper's point ``(x, y)``, labelled ``paper: label`` in the legend."""
     ax.plot([x], [y], marker="*", markersize=13, color=PAPER_STYLE["color"], linestyle="none",
             label=f"paper: {label}")
 

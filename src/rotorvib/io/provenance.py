@@ -49,6 +49,8 @@ def git_date(repo: str | Path = ".") -> str:
 
 
 def package_versions(names=RECORDED_PACKAGES) -> dict[str, str]:
+    """Installed version of each package of ``names`` ("not installed" for one that is not), as
+    recorded in every dataset's provenance."""
     versions = {}
     for name in names:
         try:

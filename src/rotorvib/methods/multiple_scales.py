@@ -32,7 +32,7 @@ from rotorvib.checks import finite_array
 
 @dataclass(frozen=True)
 class Resonance:
-    """``lambda_j + lambda_k`` within ``distance`` of ``lambda_l`` (relative to |lambda|)."""
+    """``lambda_j + lambda_k`` within ``distance`` of ``lambda_l`` (relative to ``|lambda|``)."""
 
     j: int
     k: int

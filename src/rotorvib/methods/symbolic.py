@@ -96,6 +96,8 @@ def compare(paper: str, equation: str, description: str, derived, printed, *,
 
 def compare_matrices(paper: str, equation: str, description: str, derived: sp.Matrix,
                      printed: sp.Matrix) -> Check:
+    """A :class:`Check` that ``derived - printed`` simplifies to the zero matrix; its detail
+    lists every entry that does not."""
     diff = (derived - printed).applyfunc(_reduce)
     bad = [f"[{i},{j}]: {sp.sstr(diff[i, j])}" for i in range(diff.rows)
            for j in range(diff.cols) if diff[i, j] != 0]

@@ -44,6 +44,8 @@ def with_totals(readme: str, table: list[dict]) -> str:
 
 
 def main(argv: list[str]) -> None:
+    """``python -m rotorvib.pipeline.readme COMPARISON_CSV README``: rewrite the README's block
+    of totals."""
     comparison, readme = argv
     path = Path(readme)
     path.write_text(with_totals(path.read_text(encoding="utf-8"), read_table(comparison)),

@@ -264,6 +264,7 @@ def summary_text(table: list[dict], claims: dict[tuple[str, str], str], papers: 
 
 
 def write(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path`` (UTF-8), making its folder."""
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     Path(path).write_text(text, encoding="utf-8")
 

@@ -68,10 +68,14 @@ def dual_absorber(m1, m2, k1, k2, c1, c2, d1, d2) -> tuple[AbsorberSet, Absorber
 
 
 def dual_from_vector(x) -> tuple[AbsorberSet, AbsorberSet]:
+    """The two absorber sets of a design vector ``x = (m1, m2, k1, k2, c1, c2, d1, d2)``
+    (:func:`dual_absorber`)."""
     return dual_absorber(*(float(v) for v in x))
 
 
 def dual_to_vector(sets) -> np.ndarray:
+    """The design vector ``(m1, m2, k1, k2, c1, c2, d1, d2)`` of two absorber sets (inverse of
+    :func:`dual_from_vector`)."""
     a, b = sets
     return np.array([a.m, b.m, a.k, b.k, a.c, b.c, a.d, b.d])
 

@@ -44,6 +44,8 @@ def rhs_nonlinear(t, y, J, k_t, gamma0, m, k, c, d, omega):
 
 
 def rhs_linear(t, y, minv, C, K, gamma0, omega):
+    """Right-hand side of eq. (14) as first-order system: ``q'' = M^-1 (f(t) - C q' - K q)``
+    with ``f = (Gamma0 cos(omega t), 0, 0)``, ``y = (q, q')``, ``minv = M^-1``."""
     n = len(y) // 2
     force = np.zeros(n)
     force[0] = gamma0 * np.cos(omega * t)

@@ -9,6 +9,8 @@ rotating-frame state ``[u, v, a1, a2, u', v', a1', a2']`` (paper A's units: leng
 ``dq(tau') = sum_k c_k e^{lambda_k (tau' - tau)} v_k``; when no ``Re lambda_k`` is positive,
 ``|e^{lambda_k s}| <= 1`` for ``s >= 0`` and the triangle inequality bounds, for all later times,
 
+::
+
     r = R |u + i v|          <=  sum_k |c_k| R |v_k,u + i v_k,v|                     =: B_r,
     F = k r + c r' <= k r + c |z'|
                              <=  sum_k |c_k| (k R |v_k,u + i v_k,v|

@@ -44,18 +44,23 @@ def _three_methods(ds, variable, zoom, title, ylabel, i_beta):
 
 
 def fig2(resp, paper, zoom, beta):
+    """Fig 2: x/R of the geometric centre by one-term and two-term multiple scales and
+    Runge-Kutta at the case's ``beta``, with a zoom over ``zoom`` and the errors."""
     i = int(np.argmin(np.abs(resp.beta.values - beta)))
     return _three_methods(resp, "u", zoom, "Fig 2: x of the geometric centre (rotating frame)",
                           "x / R", i)
 
 
 def fig3(resp, paper, zoom, beta):
+    """Fig 3: y/R of the geometric centre, as :func:`fig2`."""
     i = int(np.argmin(np.abs(resp.beta.values - beta)))
     return _three_methods(resp, "v", zoom, "Fig 3: y of the geometric centre (rotating frame)",
                           "y / R", i)
 
 
 def fig4(resp, paper, beta):
+    """Fig 4: the two ball angles by the three methods at the case's ``beta``, with the
+    balanced angles +/-arccos(-1/(2 rho))."""
     i = int(np.argmin(np.abs(resp.beta.values - beta)))
     fig, axes = figure(2, 1, sharex=True, figsize=(7.0, 6.0))
     tau = resp.tau.values
@@ -122,11 +127,14 @@ def fig5(resp, paper, betas):
 
 
 def fig6(resp, paper, betas):
+    """Fig 6: the ball angles for each of ``betas`` (Runge-Kutta)."""
     return _beta_family(resp, betas, ("alpha1", "alpha2"), ("alpha1 (deg)", "alpha2 (deg)"),
                         "Fig 6: ball angles for three beta (Runge-Kutta)")
 
 
 def fig7(region, paper):
+    """Fig 7: the stable region in the (beta, Omega) plane by multiple scales and by Lyapunov's
+    first method, one panel per zeta."""
     n = region.zeta.size
     fig, axes = figure(1, n, figsize=(5.0 * n, 4.4), sharey=True)
     axes = np.atleast_1d(axes)
@@ -146,6 +154,8 @@ def fig7(region, paper):
 
 
 def error_study(err, paper):
+    """The error of the one- and two-term solutions against Runge-Kutta over the initial
+    distance delta, on log-log axes with the slopes O(delta^2) and O(delta^3)."""
     fig, ax = figure()
     d = err.delta.values
     for name, label, style in (("one_term", "one term", "o-C1"),
@@ -165,6 +175,8 @@ def error_study(err, paper):
 
 
 def slow_flow(flow, paper):
+    """The small-mu slow flow's stability boundary against the exact one (full linearisation)
+    in the (Omega, beta) plane."""
     fig, ax = figure()
     ax.plot(flow.critical_speed_exact.values, flow.beta.values, "k", lw=1.6,
             label="exact (full linearisation)")

@@ -31,6 +31,8 @@ def _attrs(title, summary, where):
 
 
 def offset_vector(u, v, alpha1_deg, alpha2_deg) -> np.ndarray:
+    """The state offset ``(u, v, alpha1, alpha2, 0, 0, 0, 0)`` from the balanced state (angles
+    given in degrees, stored in radians; rates zero)."""
     return np.array([u, v, np.radians(alpha1_deg), np.radians(alpha2_deg), 0, 0, 0, 0], float)
 
 

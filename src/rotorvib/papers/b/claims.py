@@ -77,6 +77,8 @@ def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
 
 
 def table2_rows(forces: xr.Dataset, R: float, kinematics: str) -> list[dict]:
+    """Table 2 regenerated: per row, beta, m, the peak bearing force, its decay time and the
+    balance time at the race radius ``R`` (nearest calibration radius) under ``kinematics``."""
     at = pick(forces, kinematics=kinematics).sel(R=R, method="nearest")
     return [{"row": int(c), "beta": float(at.case_beta[i]), "m_kg": float(at.case_mass[i]),
              "force_max_N": float(at.force_max[i]), "force_decay_time_s":
@@ -130,6 +132,9 @@ def kinematics_note(beta: xr.Dataset, mass: xr.Dataset, t1: xr.Dataset, forces: 
 
 def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
               time_uncertainty: float) -> list[Reproduced]:
+    """The claims of Figs 8-14 on the balance-time grids under kinematics ``kin``: the best
+    beta in ``band``, the trends with beta and mass, IC3's dip, mass against damping; and the
+    optimum masses."""
     b = pick(beta, kinematics=kin)
     m = pick(mass, kinematics=kin)
     rows = []
@@ -222,6 +227,8 @@ def ga_rows(ga: xr.Dataset, kin: str, bounds: dict, band) -> list[Reproduced]:
 
 def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: dict,
                time_uncertainty: float) -> list[Reproduced]:
+    """Tables 1 and 2 against the paper under kinematics ``kin``: the optimum mass and mean
+    time per speed, the peak forces and decay times, the printed reductions and Fig 16's claim."""
     rows = []
     for r in table1_rows(t1, kin):
         s = int(round(r["speed_rad_s"]))
@@ -269,6 +276,8 @@ def _run_of(tr: xr.Dataset, name: str) -> xr.Dataset:
 
 def response_rows(tr: xr.Dataset, kin: str, r_threshold: float,
                   time_uncertainty: float) -> list[Reproduced]:
+    """Fig 7's balance time, the run-up's end and the claims of Figs 6, 11 and 15 on the time
+    responses under kinematics ``kin``."""
     t = pick(tr, kinematics=kin)
     names = [str(n) for n in t.run_name.values]
 

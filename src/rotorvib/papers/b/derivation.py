@@ -103,6 +103,9 @@ def _constant_speed(expr):
 
 
 def checks() -> list[Check]:
+    """Every symbolic check of paper B: eqs. (2)-(9) from the energies (2)-(6) by Lagrange
+    under the paper's kinematics, the equilibrium (16)-(17) and (33)-(34), and the linearised
+    matrices against the printed ones."""
     rows = []
     _, G, balls = positions(w * t)
     e_r, e_th = _vec(theta), sp.Matrix([-sp.sin(theta), sp.cos(theta)])

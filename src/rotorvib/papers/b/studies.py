@@ -32,6 +32,8 @@ METRIC_ATTRS = {
 
 
 def metric_attrs(name: str) -> dict:
+    """The ``long_name`` and ``units`` attributes of run metric ``name``
+    (:data:`METRIC_ATTRS`)."""
     long_name, units = METRIC_ATTRS[name]
     return {"long_name": long_name, "units": units}
 

@@ -174,7 +174,7 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
 
 
 def late_amplitude(ds: xr.Dataset) -> np.ndarray:
-    """Largest |theta| of each design over the last forcing period of the time response."""
+    """Largest ``|theta|`` of each design over the last forcing period of the time response."""
     t = ds.t.values
     return np.abs(ds.theta.values[:, t >= t[-1] - 2 * np.pi / float(ds.omega_n)]).max(axis=1)
 

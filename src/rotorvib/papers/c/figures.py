@@ -227,6 +227,6 @@ def _with_radius(bb, i: int) -> str:
 
 
 def uncertainty(unc, paper):
-    """Beyond the paper: Sobol indices and band of Table 2's objective |Theta(omega_n)|."""
+    """Beyond the paper: Sobol indices and band of Table 2's objective ``|Theta(omega_n)|``."""
     return sensitivity(unc, {"theta": paper["theta_table2"]},
                        "Table 2's objective with every value within its tolerance")
