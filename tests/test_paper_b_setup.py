@@ -375,3 +375,35 @@ def test_a_ga_claim_inside_the_seed_spread_is_undetermined():
     word, margin = verdict([0.19, 0.12, 0.35, 0.15, 0.18])     # 0.01 inside, seeds spread 0.115
     assert word == "UNDETERMINED"
     assert margin.value == pytest.approx(0.01) and margin.uncertainty == pytest.approx(0.115)
+
+
+def test_the_law_uses_the_slowest_decaying_mode_and_predicts_a_run(setup):
+    """The law's rate is minus the balanced state's growth rate (the stability maps') away
+    from the existence bound; on the bound, where one mode is neutral, it is the slowest of the
+    others. On Fig 7's balancer the law, from the run's force peak, gives its balance time
+    within the comparison's 10 %."""
+    from rotorvib.papers.b.law import balance_time_law, run_parameters, slow_decay_rate
+    from rotorvib.papers.b.stability_maps import growth_rate
+
+    m_bar, eps_bar, zeta, beta, omega_bar = 0.01, np.array([0.01, 0.02]), 0.01, 1.0, 2.0
+    rate = slow_decay_rate(m_bar, eps_bar, zeta, beta, omega_bar, neutral=1e-9)
+    growth = growth_rate(m_bar, eps_bar, zeta, beta, omega_bar)
+    assert rate[0] == pytest.approx(-growth[0], rel=1e-12)          # inside the bound
+    assert abs(growth[1]) < 1e-9 < rate[1]                         # on it: a neutral mode
+    assert np.isnan(slow_decay_rate(m_bar, 0.03, zeta, beta, omega_bar, neutral=1e-9))
+    result = run(engine.FIXED, *setup.run_inputs(mass=0.01, beta=1.0, eps_bar=0.01,
+                                                 phi0_deg=(45.0, 90.0), kinematics="printed"),
+                 setup.criterion, **setup.tolerances)
+    wn = np.sqrt(setup.k / setup.M)
+    sigma = float(slow_decay_rate(0.01 / setup.M, 0.01, setup.zeta, 1.0,
+                                  setup.omega / wn, neutral=1e-9)) * wn
+    law = balance_time_law(result.force_max_time, result.force_max,
+                           setup.k * setup.criterion.r_threshold, sigma)
+    assert law == pytest.approx(result.balance_time, rel=0.1)
+    import xarray as xr
+    ds = xr.Dataset({"balance_time": (("kinematics", "beta"), [[1.0, 2.0]])},
+                    coords={"beta": [0.1, 0.2], "kinematics_name": ("kinematics", ["printed"])})
+    values = run_parameters(ds, {"mass": 0.01, "eps_bar": 0.012, "speed": 200.0})
+    assert values["beta"].values.tolist() == [[0.1, 0.2]] and values["mass"].shape == (1, 2)
+    with pytest.raises(ValueError, match=r"\['speed'\] are neither coordinates nor fixed"):
+        run_parameters(ds, {"mass": 0.01, "eps_bar": 0.012})

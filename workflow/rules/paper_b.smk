@@ -166,6 +166,15 @@ FIGURES["b"] = {
         )
         for case, spec in B_UNCERTAIN.items()
     },
+    "balance_law": figure(
+        "balance_law",
+        {"law": "balance_law"},
+        "Beyond the paper: the balance time by the law t_pk + ln(F_pk / (k r_thr)) / sigma "
+        "(the peak bearing force of the critical-speed passage and the slowest decay rate of the "
+        "balanced state) against the integration, on every balanced run of the balance studies, "
+        "Tables 1-2 and the basin map, and the distribution of its relative error.",
+        items=["Balance-time law"],
+    ),
     "pareto": figure(
         "pareto",
         {"pareto": "pareto"},
@@ -405,6 +414,45 @@ rule b_pareto:
         "../scripts/b_pareto.py"
 
 
+rule b_balance_law:
+    input:
+        balance_beta=dataset("b", "balance_beta"),
+        balance_mass=dataset("b", "balance_mass"),
+        table1=rules.b_table1_runs.output[0],
+        basin=dataset("b", "basin"),
+        table2=rules.b_forces.output[0],
+    output:
+        dataset("b", "balance_law"),
+    log:
+        logs("b_balance_law"),
+    # Reads datasets and solves small eigenvalue problems: runs where Snakemake runs.
+    localrule: True
+    params:
+        setup=B_SETUP,
+        neutral=B["marginal_growth"],
+        # each source's parameters that its dataset does not vary (the speed: the run-up's)
+        fixed={
+            "balance_beta": {
+                **B["balance_studies"]["beta"]["fixed"],
+                "speed": B["speed"]["omega"],
+            },
+            "balance_mass": {
+                **B["balance_studies"]["mass"]["fixed"],
+                "speed": B["speed"]["omega"],
+            },
+            "table1": {"beta": B["table1"]["beta"], "eps_bar": B["table1"]["eps_bar"]},
+            "basin": {"eps_bar": B["basin"]["eps_bar"], "speed": B["speed"]["omega"]},
+            "table2": {
+                "eps_bar": B["table2"]["eps_bar"],
+                "speed": B["table2"]["speed"],
+            },
+        },
+    message:
+        "Paper B (beyond the paper): the balance-time law against every balanced run"
+    script:
+        "../scripts/b_balance_law.py"
+
+
 rule b_basin:
     output:
         dataset("b", "basin"),
@@ -482,6 +530,7 @@ rule b_reproduced_values:
         forces=rules.b_forces.output[0],
         basin=rules.b_basin.output[0],
         pareto=rules.b_pareto.output[0],
+        law=rules.b_balance_law.output[0],
         paper_values=PAPER_VALUES,
     output:
         reproduced_file("b"),
@@ -497,6 +546,7 @@ rule b_reproduced_values:
         typical=B["claims"]["ics_typical_share"],
         time_uncertainty=B["claims"]["time_uncertainty"],
         r_threshold=B["balance"]["r_threshold"],
+        close=CLOSE,
     message:
         "Paper B: measuring the paper's stated values and claims on the datasets"
     script:

@@ -5,6 +5,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 from rotorvib.comparison import paper_values_of, write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.claims import reproduce
+from rotorvib.papers.b.law import law_rows
 from rotorvib.papers.b.pareto import pareto_rows
 from rotorvib.papers.b.uncertainty import uncertainty_rows
 
@@ -14,11 +15,12 @@ p = snakemake.params
 data = {name: read_dataset(path, producers) for name, path in snakemake.input.items()
         if name != "paper_values"}
 pareto = data.pop("pareto")
+law = data.pop("law")
 uncertainty = {name.removeprefix("uncertainty_"): data.pop(name)
                for name in [n for n in data if n.startswith("uncertainty_")]}
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  r_threshold=p.r_threshold, time_uncertainty=p.time_uncertainty,
                  paper_values=paper)
-rows += pareto_rows(pareto) + uncertainty_rows(uncertainty, paper)
+rows += pareto_rows(pareto) + uncertainty_rows(uncertainty, paper) + law_rows(law, p.close)
 write_reproduced(rows, snakemake.output[0])

@@ -300,6 +300,34 @@ def kinematics_shift(paper, **studies):
     return fig
 
 
+def balance_law(law, paper):
+    """Beyond the paper: the balance-time law against the integration, each balanced run a
+    point (colour: study), and the distribution of the relative error with its median and
+    90th percentile."""
+    errors = law.relative_error.values
+    fig, (ax1, ax2) = figure(1, 2, figsize=(11.0, 4.6))
+    for i, source in enumerate(dict.fromkeys(law.source.values)):
+        sel = law.source.values == source
+        ax1.plot(law.balance_time.values[sel], law.predicted.values[sel], ".", ms=2.5,
+                 color=f"C{i}", alpha=0.5, label=f"{source} ({sel.sum()} runs)")
+    span = [float(np.nanmin(law.balance_time)), float(np.nanmax(law.balance_time))]
+    ax1.plot(span, span, "k", lw=1, label="law = integration")
+    ax1.set(xlabel="balance time, integration (s)", ylabel="balance time, law (s)",
+            title="t_pk + ln(F_pk / (k r_thr)) / sigma")
+    ax1.legend(fontsize=7, markerscale=3)
+    shown = errors[np.isfinite(errors)]
+    ax2.hist(100 * shown, bins=80, color="0.6", label=f"{shown.size} balanced runs")
+    for q, style in ((50, "-"), (90, "--")):
+        value = 100 * np.percentile(np.abs(shown), q)
+        ax2.axvline(value, color="C3", ls=style, lw=1.2, label=f"|error| {q}th percentile: "
+                                                               f"{value:.1f} %")
+        ax2.axvline(-value, color="C3", ls=style, lw=1.2)
+    ax2.set(xlabel="relative error of the law (%)", ylabel="runs",
+            title="error of the law over the balanced runs")
+    ax2.legend(fontsize=7)
+    return fig
+
+
 def pareto(pareto, paper):
     """Beyond the paper: the front of mean balance time against worst peak bearing force, with
     Table 2's rows, and where the front lies in (beta, m)."""

@@ -1,0 +1,164 @@
+"""Beyond paper B: a law for the balance time, from quantities known before the end of a run.
+
+After the run-up passes the critical speed, the whirl radius decays towards the balanced state
+at the rate of the slowest mode of the linearised balanced state (eqs 27-32): a straight line
+on a log scale.  With the bearing force peaking at ``F_pk`` at time ``t_pk`` during the passage,
+the radius there is about ``F_pk / k``, and it falls below the threshold ``r_thr`` of the
+balance criterion when
+
+    t_b = t_pk + ln(F_pk / (k r_thr)) / sigma,    sigma = -max Re(lambda) omega_n,
+
+``lambda`` the slowest eigenvalue of the balanced state at the operating speed that is not
+neutral (at the existence bound m/M = eps_bar/2, eq. 34, one mode is neutral and moves r only
+at second order).  :func:`law_dataset` evaluates it on every balanced run of paper B's studies
+against the balance time the integration gives, :func:`law_rows` states how well it does.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rotorvib.comparison import Margin, Reproduced
+from rotorvib.models.balancer import stability
+from rotorvib.models.balancer.parameters import paper_b_groups
+from rotorvib.papers.b.setup import Setup, dataset_attrs
+
+#: coordinate of a study dataset -> the run parameter it holds
+_PARAMETER_COORDS = {"mass": "mass", "case_mass": "mass", "beta": "beta", "case_beta": "beta",
+                     "eps_bar": "eps_bar", "speed": "speed"}
+
+
+def slow_decay_rate(m_bar, eps_bar, zeta, beta, omega_bar, *, neutral: float, n: int = 2):
+    """``sigma / omega_n``: minus the largest real part of the balanced state's eigenvalues
+    that are not neutral (``Re lambda < -neutral``), in units of paper B's ``omega_n``; NaN
+    where no balanced state exists (m_bar/eps_bar < 1/2) or no mode decays.  Vectorised over
+    broadcast arguments."""
+    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    rate = np.full(mu.shape, np.nan)
+    exists = rho >= 0.5
+    if exists.any():
+        scale = np.sqrt(1 + n * np.broadcast_to(np.asarray(m_bar, float), mu.shape)[exists])
+        real = stability.eigenvalues(mu[exists], rho[exists], z[exists], b[exists],
+                                     om[exists]).real / scale[:, None]
+        slowest = np.where(real < -neutral, real, -np.inf).max(axis=-1)
+        rate[exists] = np.where(np.isfinite(slowest), -slowest, np.nan)
+    return rate
+
+
+def balance_time_law(t_peak, force_peak, f_threshold: float, sigma):
+    """``t_pk + ln(F_pk / f_thr) / sigma`` (s), ``f_thr = k r_thr`` the force of the balance
+    criterion and ``sigma`` the slowest decay rate (1/s); broadcast."""
+    return np.asarray(t_peak) + np.log(np.asarray(force_peak) / f_threshold) / np.asarray(sigma)
+
+
+def run_parameters(ds: xr.Dataset, fixed: dict) -> dict[str, xr.DataArray]:
+    """Each run's ``mass``, ``beta``, ``eps_bar`` and ``speed`` over the dimensions of the
+    dataset's balance times: from its coordinates where it varies them, else from ``fixed``."""
+    values = dict(fixed)
+    for coord, name in _PARAMETER_COORDS.items():
+        if coord in ds.coords:
+            values[name] = ds[coord]
+    missing = {"mass", "beta", "eps_bar", "speed"} - set(values)
+    if missing:
+        raise ValueError(f"the parameters {sorted(missing)} are neither coordinates nor fixed")
+    return {name: _over_runs(xr.DataArray(v) if np.isscalar(v) else v, ds)
+            for name, v in values.items() if name in ("mass", "beta", "eps_bar", "speed")}
+
+
+def _over_runs(values: xr.DataArray, ds: xr.Dataset) -> xr.DataArray:
+    """``values`` broadcast over the dimensions of ``ds.balance_time``, in their order."""
+    return xr.broadcast(values, ds.balance_time)[0].transpose(*ds.balance_time.dims)
+
+
+def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
+                neutral: float) -> xr.Dataset:
+    """The law against the integration on every balanced run of ``sources`` (name ->
+    ``(dataset, fixed parameters)``, :func:`run_parameters`), one ``run`` dimension: the
+    source, the kinematics, the parameters, ``sigma``, the predicted and the integrated
+    balance time."""
+    wn = np.sqrt(setup.k / setup.M)
+    f_threshold = setup.k * setup.criterion.r_threshold
+    columns = {key: [] for key in ("source", "kinematics", "m_bar", "eps_bar", "beta",
+                                   "omega_bar", "sigma", "predicted", "balance_time")}
+    for name, (ds, fixed) in sources.items():
+        p = run_parameters(ds, fixed)
+        kin = _over_runs(ds.kinematics_name, ds)
+        balanced = (ds.balanced == 1).values
+        m_bar, eps, beta = (p["mass"].values / setup.M, p["eps_bar"].values, p["beta"].values)
+        omega_bar = p["speed"].values / wn
+        sigma = slow_decay_rate(m_bar, eps, setup.zeta, beta, omega_bar, neutral=neutral) * wn
+        predicted = balance_time_law(ds.force_max_time.values, ds.force_max.values,
+                                     f_threshold, sigma)
+        for key, values in (("source", np.full(balanced.shape, name, dtype=object)),
+                            ("kinematics", kin.values.astype(object)), ("m_bar", m_bar),
+                            ("eps_bar", eps), ("beta", beta), ("omega_bar", omega_bar),
+                            ("sigma", sigma), ("predicted", predicted),
+                            ("balance_time", ds.balance_time.values)):
+            columns[key].append(np.asarray(values)[balanced])
+    data = {key: np.concatenate(v) for key, v in columns.items()}
+    one = {"units": "1"}
+    return xr.Dataset(
+        {"m_bar": ("run", data["m_bar"], {"long_name": "ball mass ratio m/M", **one}),
+         "eps_bar": ("run", data["eps_bar"], {"long_name": "eccentricity ratio eps/R", **one}),
+         "beta": ("run", data["beta"], {"long_name": "ball damping ratio beta", **one}),
+         "omega_bar": ("run", data["omega_bar"], {"long_name": "operating speed / omega_n",
+                                                  **one}),
+         "sigma": ("run", data["sigma"], {"long_name": "slowest non-neutral decay rate of "
+                                                       "the balanced state", "units": "s-1"}),
+         "predicted": ("run", data["predicted"], {
+             "long_name": "balance time by the law t_pk + ln(F_pk / (k r_thr)) / sigma",
+             "units": "s"}),
+         "balance_time": ("run", data["balance_time"], {
+             "long_name": "balance time of the integration (threshold criterion)",
+             "units": "s"}),
+         "relative_error": ("run", (data["predicted"] - data["balance_time"])
+                            / data["balance_time"], {
+             "long_name": "relative error of the law, (law - integration) / integration "
+                          "(NaN where the law has no rate)", **one})},
+        coords={"source": ("run", data["source"], {"long_name": "study the run belongs to"}),
+                "kinematics_name": ("run", data["kinematics"], {"long_name": "kinematics"})},
+        attrs=dataset_attrs("a law for the balance time",
+                            "Beyond the paper: the balance time predicted from the peak bearing "
+                            "force of the critical-speed passage and the slowest decay rate of "
+                            "the balanced state, against the integration, on every balanced "
+                            "run of " + ", ".join(sources), "Figs 7-15, Tables 1-2"),
+    )
+
+
+def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
+             seed: int = 0) -> list[Reproduced]:
+    """Beyond the paper: does the law predict the balance time of the median balanced run
+    within the comparison's standard for "close"?  The margin is ``close`` less the median
+    absolute relative error, its uncertainty twice the bootstrap standard deviation of that
+    median; the explanation gives the spread by study and where the largest errors lie (their
+    ball damping, and their share on the existence bound m_bar / eps_bar = 1/2)."""
+    errors = np.abs(ds.relative_error.values)
+    valued = np.isfinite(errors)
+    if not valued.any():
+        return [Reproduced.claim("B", "balance_law_close", None,
+                                 "undetermined: no balanced run with a decaying mode to test "
+                                 "the law on")]
+    median = float(np.median(errors[valued]))
+    rng = np.random.default_rng(seed)
+    draws = rng.integers(0, valued.sum(), (resamples, valued.sum()))
+    spread = float(np.median(errors[valued][draws], axis=1).std())
+    worst = valued & (errors >= np.percentile(errors[valued], 99))
+    on_bound = np.isclose(ds.m_bar.values / ds.eps_bar.values, 0.5, rtol=1e-6)
+    beta = ds.beta.values
+    by_source = "; ".join(
+        f"{s}: median {np.median(errors[valued & (ds.source.values == s)]):.1%}, 90 % within "
+        f"{np.percentile(errors[valued & (ds.source.values == s)], 90):.1%}"
+        for s in dict.fromkeys(ds.source.values))
+    return [Reproduced.claim(
+        "B", "balance_law_close",
+        Margin(close - median, 2 * spread, "relative", f"bootstrap of the median over "
+                                                       f"{int(valued.sum())} runs"),
+        f"over {int(valued.sum())} balanced runs the law's error is {median:.1%} at the median "
+        f"and within {np.percentile(errors[valued], 90):.1%} for 90 % ({by_source}). Its largest "
+        f"errors come with little ball damping: the 1 % worst runs (errors from "
+        f"{errors[worst].min():.0%}) have beta {np.median(beta[worst]):g} at the median against "
+        f"{np.median(beta[valued]):g} for all runs; the existence bound m_bar/eps_bar = 1/2 does "
+        f"not single them out ({on_bound[worst].mean():.0%} of them on it, "
+        f"{on_bound[valued].mean():.0%} of all runs). Close means within {close:.0%}, the "
+        "comparison's standard")]
