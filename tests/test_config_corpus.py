@@ -42,6 +42,7 @@ CASES = [
     ("paper_c.time_response.samples_per_period", 4, None),
     ("paper_c.claims.fig3_time", 5.0, None), ("comparison.close", 2.0, None),
     ("paper_c.distance_study.offsets", [0.0], None),
+    ("paper_c.spin.n", 1, None), ("paper_c.spin.realistic_rpm", 0.0, None),
     ("paper_c.distance_study.offsets", [0.0, 0.0], None),
     # paper B
     ("paper_b.machine.M", 0, None), ("paper_b.machine.n", 2.0, None),

@@ -7,6 +7,7 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.models.absorber.parameters import Rotor
 from rotorvib.papers.c.broadband import broadband_rows
 from rotorvib.papers.c.claims import reproduce
+from rotorvib.papers.c.spin import spin_rows
 from rotorvib.papers.c.uncertainty import uncertainty_rows
 
 job.start(snakemake.log[0])
@@ -19,4 +20,5 @@ rows = reproduce(**data, J=rotor.J, static=rotor.Gamma0 / rotor.k_t, claims=p.cl
                  close=p.close, rtol=p.rtol, paper_values=paper)
 rows += broadband_rows(read_dataset(snakemake.input.bb, producers))
 rows += uncertainty_rows(read_dataset(snakemake.input.uncertainty, producers), paper)
+rows += spin_rows(read_dataset(snakemake.input.spin, producers), p.close)
 write_reproduced(rows, snakemake.output[0])

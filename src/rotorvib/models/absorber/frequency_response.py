@@ -20,11 +20,14 @@ from rotorvib.checks import finite_array, integer
 from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
 
 
-def matrices(rotor: Rotor, sets) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def matrices(rotor: Rotor, sets, spin: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Mass, damping and stiffness matrices of the linearised equations (eq. 14), any set count.
 
     Row 0 is the disk equation (11); row ``j`` the equation (12)/(13) of set ``j`` as printed
-    (divided by 2, so M is not symmetric).
+    (divided by 2, so M is not symmetric).  ``spin`` is the rotor's mean speed Omega (rad/s),
+    which the paper's kinetic energy leaves out: with it the term ``-m u (Omega + theta')^2`` of
+    eq. (9), linearised, softens each set's stiffness to ``2 k - m Omega^2`` (beyond the paper;
+    0 gives eq. 14 as printed).
     """
     n = 1 + len(sets)
     M, C, K = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
@@ -35,20 +38,22 @@ def matrices(rotor: Rotor, sets) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         M[j, 0] = s.m * s.d
         M[j, j] = s.m
         C[j, j] = 2 * s.c
-        K[j, j] = 2 * s.k
+        K[j, j] = 2 * s.k - s.m * spin**2
     return M, C, K
 
 
-def dynamic_stiffness(rotor: Rotor, sets, omega) -> np.ndarray:
-    """``A(w) = -M w^2 + i w C + K`` (eq. 18), shape ``omega.shape + (n, n)``."""
-    M, C, K = matrices(rotor, sets)
+def dynamic_stiffness(rotor: Rotor, sets, omega, spin: float = 0.0) -> np.ndarray:
+    """``A(w) = -M w^2 + i w C + K`` (eq. 18), shape ``omega.shape + (n, n)``; ``spin`` as in
+    :func:`matrices`."""
+    M, C, K = matrices(rotor, sets, spin)
     w = finite_array("omega", omega)[..., None, None]
     return -M * w**2 + 1j * w * C + K
 
 
-def steady_state(rotor: Rotor, sets, omega) -> np.ndarray:
-    """Complex amplitudes ``[Theta, S1, S2, ...]`` (rad, m, m) of eq. (17) by a linear solve."""
-    A = dynamic_stiffness(rotor, sets, omega)
+def steady_state(rotor: Rotor, sets, omega, spin: float = 0.0) -> np.ndarray:
+    """Complex amplitudes ``[Theta, S1, S2, ...]`` (rad, m, m) of eq. (17) by a linear solve;
+    ``spin`` as in :func:`matrices`."""
+    A = dynamic_stiffness(rotor, sets, omega, spin)
     rhs = np.zeros(A.shape[:-1], dtype=complex)
     rhs[..., 0] = rotor.Gamma0
     return np.linalg.solve(A, rhs[..., None])[..., 0]
@@ -83,10 +88,11 @@ def dimensionless_amplitude(rotor: Rotor, theta) -> np.ndarray:
     return np.abs(theta) * rotor.k_t / rotor.Gamma0
 
 
-def amplitude(rotor: Rotor, sets, w) -> np.ndarray:
-    """``D(w)`` of the rotor with ``sets`` at frequency ratios ``w = omega / omega_n``."""
+def amplitude(rotor: Rotor, sets, w, spin: float = 0.0) -> np.ndarray:
+    """``D(w)`` of the rotor with ``sets`` at frequency ratios ``w = omega / omega_n``;
+    ``spin`` as in :func:`matrices`."""
     omega = np.asarray(w) * rotor.omega_n
-    return dimensionless_amplitude(rotor, steady_state(rotor, sets, omega)[..., 0])
+    return dimensionless_amplitude(rotor, steady_state(rotor, sets, omega, spin)[..., 0])
 
 
 def bare_rotor_amplitude(w) -> np.ndarray:

@@ -138,6 +138,35 @@ def distance(ds, paper):
     return fig
 
 
+def spin(ds, paper):
+    """Beyond the paper: Table 2's absorber on a spinning rotor -- each set's tuning
+    sqrt(omega_a^2 - Omega^2) / omega_n with the comparison's 10 % band around its value at
+    rest, D at resonance over the spin, and D(w) at rest and at the realistic spin."""
+    fig, (ax1, ax2) = figure(1, 2, figsize=(11.0, 4.4))
+    rpm = ds.spin.values * 30 / np.pi
+    realistic = float(ds.realistic_spin) * 30 / np.pi
+    for j, set_tuning in enumerate(ds.tuning.values, start=1):
+        ax1.plot(rpm, set_tuning, lw=1.6 if j == 1 else 1.0, ls="-" if j == 1 else "--",
+                 label=f"set {j}: tuning / omega_n")
+    rest = float(ds.tuning.values[0, 0])
+    ax1.axhspan(0.9 * rest, 1.1 * rest, color="C0", alpha=0.1, label="within 10 % of rest")
+    ax1.axvline(realistic, color="0.3", ls=":", label=f"realistic spin, {realistic:.0f} rpm")
+    twin = ax1.twinx()
+    twin.plot(rpm, ds.D_resonance.values, color="C3", lw=1.2, label="D at resonance (right)")
+    twin.set_ylabel("D at w = 1", color="C3")
+    ax1.set(xlabel="rotor spin Omega (rpm)", ylabel="absorber tuning / omega_n",
+            title="tuning and resonance amplitude over the spin")
+    lines = ax1.get_legend_handles_labels()
+    more = twin.get_legend_handles_labels()
+    ax1.legend(lines[0] + more[0], lines[1] + more[1], fontsize=7, loc="lower left")
+    for i, name in enumerate(ds.case_name.values):
+        ax2.plot(ds.w.values, ds.D.values[i], lw=1.4, label=str(name))
+    ax2.set(xlabel="frequency ratio w = omega/omega_n", ylabel="D = |Theta| k_t / Gamma0",
+            yscale="log", title="Table 2's absorber at rest and at the realistic spin")
+    ax2.legend(fontsize=8)
+    return fig
+
+
 def fig7(tr, paper):
     """Fig 7: absorber displacements of the Table 2 dual absorber at resonance."""
     fig, ax = figure()
