@@ -206,6 +206,7 @@ RESULTS["b"] = results_of(
         "forces",
         "basin",
         "pareto",
+        "balance_law",
         "discrepancies",
     ]
     + [f"uncertainty_{case}" for case in B_UNCERTAIN]

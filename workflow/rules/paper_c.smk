@@ -95,6 +95,7 @@ RESULTS["c"] = results_of(
         "frequency_response",
         "mass_ratio",
         "distance",
+        "spin",
         "time_response",
         "broadband",
         "uncertainty",
