@@ -330,15 +330,17 @@ def test_a_design_with_a_censored_run_has_no_mean_and_decides_nothing():
 
 
 def test_curve_measures_order_a_censored_run_after_every_balanced_one():
-    """rise, smallest_rise and dip_depth on curves with censored runs (NaN): a censored run is
-    longer than any balanced one; two censored neighbours decide nothing (NaN)."""
-    from rotorvib.papers.b.curves import dip_depth, rise, smallest_rise, within
+    """rise and dip_depth on curves with censored runs (NaN): a censored run is longer than
+    any balanced one; two censored ends decide nothing (NaN); largest_fall counts drops between
+    balanced neighbours only."""
+    from rotorvib.papers.b.curves import dip_depth, largest_fall, rise, within
 
-    assert rise([4.0, 5.0, 4.5, 6.0]) == 2.0 and smallest_rise([4.0, 5.0, 4.5, 6.0]) == -0.5
+    assert rise([4.0, 5.0, 4.5, 6.0]) == 2.0 and largest_fall([4.0, 5.0, 4.5, 6.0]) == 0.5
     assert rise([np.nan, 5.0, 6.0]) == -np.inf                 # slowest at the bottom
     assert rise([4.0, np.nan]) == np.inf
-    assert np.isnan(rise([np.nan, 5.0, np.nan])) and np.isnan(smallest_rise([np.nan, np.nan]))
-    assert smallest_rise([np.nan, np.nan, 5.0, 6.0]) == -np.inf    # the censored pair skipped
+    assert np.isnan(rise([np.nan, 5.0, np.nan]))
+    assert largest_fall([np.nan, 5.0, 6.0]) == 0.0 and largest_fall([np.nan, np.nan]) == 0.0
+    assert largest_fall([6.0, np.nan, 5.0, 4.0]) == 1.0
     assert dip_depth([6.0, 4.0, 5.0]) == 1.0 and dip_depth([4.0, 5.0, 6.0]) == 0.0
     assert dip_depth([np.nan, 4.0, 5.0]) == 1.0
     assert within([0.12, 0.18], (0.1, 0.2)) == pytest.approx(0.02)

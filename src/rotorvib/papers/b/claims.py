@@ -17,7 +17,7 @@ import xarray as xr
 from rotorvib.comparison import Margin, Reproduced, merge_variants
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.curves import (as_longest, dip_depth, faster_share, mean_over_ics,
-                                      rise, share_balanced_by, smallest_rise, timed, within)
+                                      largest_fall, rise, share_balanced_by, timed, within)
 
 PAPER = "B"
 _row = partial(Reproduced.of, PAPER)
@@ -155,8 +155,8 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                        f"{GROWS.format('beta')} per eps_bar: "
                        + "; ".join(f"{ic} " + ", ".join(f"{rise(c):+.3g} s" for c in curves[ic])
                                    for ic in ("IC1", "IC2"))
-                       + f"; the largest fall between neighbours is "
-                         f"{-min(map(smallest_rise, ic12)):.3g} s"))
+                       + "; the largest fall between balanced neighbours is "
+                         f"{max(map(largest_fall, ic12)):.3g} s"))
     dips = [dip_depth(b.balance_time.isel(eps_bar=i, ic=2).values) for i in range(b.eps_bar.size)]
     rows.append(_claim("figs8_10_ic3_dip", timed(min(dips), time_uncertainty),
                        "IC3's lowest balance time lies below both ends of the beta range by "
@@ -169,8 +169,8 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                        timed(min(map(rise, mass_curves)), time_uncertainty),
                        f"{GROWS.format('mass')} per curve: "
                        + ", ".join(f"{rise(c):+.3g} s" for c in mass_curves)
-                       + f"; the largest fall between neighbours is "
-                         f"{-min(map(smallest_rise, mass_curves)):.3g} s"))
+                       + "; the largest fall between balanced neighbours is "
+                         f"{max(map(largest_fall, mass_curves)):.3g} s"))
     spread = {}
     for name, grid in (("beta", b), ("mass", m)):
         curves = mean_over_ics(grid.balance_time).values

@@ -26,15 +26,12 @@ def as_longest(times) -> np.ndarray:
     return np.where(np.isnan(times), np.inf, times)
 
 
-def smallest_rise(curve) -> float:
-    """The smallest step up between neighbours of a balance-time curve (negative where it
-    falls; ``as_longest`` for censored runs).  Two censored neighbours are an order nothing
-    decides and are skipped; NaN when no pair is decided."""
-    c = as_longest(curve)
-    with np.errstate(invalid="ignore"):
-        steps = np.diff(c)
-    steps = steps[~np.isnan(steps)]
-    return float(np.min(steps)) if steps.size else np.nan
+def largest_fall(curve) -> float:
+    """The largest drop of a balance-time curve between two neighbouring balanced runs (0 when
+    it never falls between them; a censored run is no time to fall from)."""
+    steps = np.diff(np.asarray(curve, float))
+    steps = steps[np.isfinite(steps)]
+    return float(max(0.0, -steps.min())) if steps.size else 0.0
 
 
 def rise(curve) -> float:
