@@ -71,10 +71,10 @@ def test_a_study_dataset_states_its_band_and_dominant_input():
 def test_the_spread_of_a_band_edge_is_the_percentiles_standard_error():
     """For n uniform samples the p-quantile has standard error sqrt(p (1 - p) / n) (density
     1): the bootstrap spread of the 5 % and 95 % edges agrees within 15 %."""
-    from rotorvib.methods.sensitivity import edge_spread
+    from rotorvib.methods.sensitivity import percentile_spread
 
     y = np.random.default_rng(3).uniform(size=4000)
-    spread = edge_spread(y, [5.0, 95.0], resamples=400, seed=1)
+    spread = percentile_spread(y, [5.0, 95.0], resamples=400, seed=1)
     np.testing.assert_allclose(spread, np.sqrt(0.05 * 0.95 / 4000), rtol=0.15)
 
 

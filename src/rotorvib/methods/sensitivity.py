@@ -132,10 +132,10 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
     )
 
 
-def edge_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
+def percentile_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
     """Standard deviation of each of ``percentiles`` of the sample ``y`` (its values; NaN
     marks a point without one) over ``resamples`` bootstrap resamples: how well a finite sample
-    pins a band's edges."""
+    pins a band's edges, or its median."""
     y = np.asarray(y, float)
     y = y[np.isfinite(y)]
     rng = np.random.default_rng(seed)
@@ -146,11 +146,11 @@ def edge_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
 def band_margin(ds: xr.Dataset, quantity: str, value: float) -> tuple[float, float]:
     """How far ``value`` lies inside ``quantity``'s band (``min(value - low, high - value)``,
     negative outside) and the uncertainty of that margin: twice the bootstrap standard deviation
-    of the nearer edge (:func:`edge_spread`, the dataset's resamples and seed)."""
+    of the nearer edge (:func:`percentile_spread`, the dataset's resamples and seed)."""
     q = list(ds.quantity_name.values).index(quantity)
     band, p = ds.band.values[q], ds.percentile.values
     lo, hi = band[0], band[-1]
-    spread = edge_spread(ds.y.values[q], [p[0], p[-1]], resamples=int(ds.attrs["sobol_resamples"]),
+    spread = percentile_spread(ds.y.values[q], [p[0], p[-1]], resamples=int(ds.attrs["sobol_resamples"]),
                          seed=int(ds.attrs["sobol_seed"]))
     nearer = 0 if value - lo <= hi - value else 1
     return float(min(value - lo, hi - value)), float(2 * spread[nearer])

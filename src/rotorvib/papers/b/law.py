@@ -20,9 +20,9 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
-from rotorvib.models.balancer import stability
-from rotorvib.models.balancer.parameters import paper_b_groups
+from rotorvib.methods.sensitivity import percentile_spread
 from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.stability_maps import balanced_eigenvalues
 
 #: coordinate of a study dataset -> the run parameter it holds
 _PARAMETER_COORDS = {"mass": "mass", "case_mass": "mass", "beta": "beta", "case_beta": "beta",
@@ -31,19 +31,13 @@ _PARAMETER_COORDS = {"mass": "mass", "case_mass": "mass", "beta": "beta", "case_
 
 def slow_decay_rate(m_bar, eps_bar, zeta, beta, omega_bar, *, neutral: float, n: int = 2):
     """``sigma / omega_n``: minus the largest real part of the balanced state's eigenvalues
-    that are not neutral (``Re lambda < -neutral``), in units of paper B's ``omega_n``; NaN
-    where no balanced state exists (m_bar/eps_bar < 1/2) or no mode decays.  Vectorised over
-    broadcast arguments."""
-    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
-    rate = np.full(mu.shape, np.nan)
-    exists = rho >= 0.5
-    if exists.any():
-        scale = np.sqrt(1 + n * np.broadcast_to(np.asarray(m_bar, float), mu.shape)[exists])
-        real = stability.eigenvalues(mu[exists], rho[exists], z[exists], b[exists],
-                                     om[exists]).real / scale[:, None]
+    (:func:`~rotorvib.papers.b.stability_maps.balanced_eigenvalues`) that are not neutral
+    (``Re lambda < -neutral``), in units of paper B's ``omega_n``; NaN where no balanced state
+    exists (m_bar/eps_bar < 1/2) or no mode decays.  Vectorised over broadcast arguments."""
+    real = balanced_eigenvalues(m_bar, eps_bar, zeta, beta, omega_bar, n).real
+    with np.errstate(invalid="ignore"):
         slowest = np.where(real < -neutral, real, -np.inf).max(axis=-1)
-        rate[exists] = np.where(np.isfinite(slowest), -slowest, np.nan)
-    return rate
+    return np.where(np.isfinite(slowest), -slowest, np.nan)
 
 
 def balance_time_law(t_peak, force_peak, f_threshold: float, sigma):
@@ -140,9 +134,7 @@ def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
                                  "undetermined: no balanced run with a decaying mode to test "
                                  "the law on")]
     median = float(np.median(errors[valued]))
-    rng = np.random.default_rng(seed)
-    draws = rng.integers(0, valued.sum(), (resamples, valued.sum()))
-    spread = float(np.median(errors[valued][draws], axis=1).std())
+    spread = float(percentile_spread(errors[valued], [50.0], resamples=resamples, seed=seed)[0])
     worst = valued & (errors >= np.percentile(errors[valued], 99))
     on_bound = np.isclose(ds.m_bar.values / ds.eps_bar.values, 0.5, rtol=1e-6)
     beta = ds.beta.values

@@ -12,18 +12,26 @@ from rotorvib.models.balancer.parameters import paper_b_groups
 from rotorvib.papers.b.setup import dataset_attrs
 
 
-def growth_rate(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray:
-    """Largest real part of the eigenvalues of the balanced state r* = 0 (eqs 27-32) in units
-    of paper B's omega_n; NaN where no balanced state exists (rho = m_bar/eps_bar < 1/2, eq. 34).
-    Vectorised over broadcast arguments."""
-    mu, rho, z, b, Om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
-    growth = np.full(mu.shape, np.nan)
+def balanced_eigenvalues(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray:
+    """The eight eigenvalues of the balanced state r* = 0 (eqs 27-32) in units of paper B's
+    omega_n, shape ``broadcast shape + (8,)``; NaN where no balanced state exists
+    (rho = m_bar/eps_bar < 1/2, eq. 34).  Paper A's groups (``paper_b_groups``) give them on the
+    total-mass scale, ``sqrt(1 + n m_bar)`` times paper B's."""
+    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    eig = np.full(mu.shape + (8,), np.nan, dtype=complex)
     exists = rho >= 0.5
     if exists.any():
         s = np.sqrt(1 + n * np.broadcast_to(m_bar, mu.shape)[exists])
-        growth[exists] = stability.max_real_part(mu[exists], rho[exists], z[exists], b[exists],
-                                                 Om[exists]) / s
-    return growth
+        eig[exists] = stability.eigenvalues(mu[exists], rho[exists], z[exists], b[exists],
+                                            om[exists]) / s[:, None]
+    return eig
+
+
+def growth_rate(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray:
+    """Largest real part of the eigenvalues of the balanced state (:func:`balanced_eigenvalues`)
+    in units of paper B's omega_n; NaN where no balanced state exists.  Vectorised over
+    broadcast arguments."""
+    return balanced_eigenvalues(m_bar, eps_bar, zeta, beta, omega_bar, n).real.max(axis=-1)
 
 
 def stability_dataset(*, m_bar, eps_bar, zeta, beta, omega_bar, n=2, where,

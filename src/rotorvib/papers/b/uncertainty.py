@@ -123,13 +123,13 @@ def run_case(setup: Setup, x, case: dict, *, kinematics: str) -> dict[str, np.nd
     metrics = setup.runs(inputs, progress=False)
     metrics = metrics.reshape(len(x), len(positions), -1)
 
-    def timed(time, flag):
+    def time_of(time, flag):
         return np.where(metric(metrics, flag) == 1, metric(metrics, time), np.nan).mean(axis=1)
 
     return {"force_max": metric(metrics, "force_max").mean(axis=1),
-            "force_decay_time": timed("force_decay_time", "force_decayed"),
-            "balance_time": timed("balance_time", "balanced"),
-            "envelope_time": timed("envelope_time", "envelope_balanced"),
+            "force_decay_time": time_of("force_decay_time", "force_decayed"),
+            "balance_time": time_of("balance_time", "balanced"),
+            "envelope_time": time_of("envelope_time", "envelope_balanced"),
             "balanced": (metric(metrics, "balanced") == 1).mean(axis=1)}
 
 
