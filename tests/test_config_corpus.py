@@ -94,6 +94,13 @@ CASES = [
     ("paper_b.pareto.positions", 1, None), ("paper_b.pareto.seed", -3, None),
     ("paper_b.pareto.speed", NAN, None), ("paper_b.pareto.n_gen", 1.5, None),
     ("paper_b.claims.ics_typical_share", [0.1, 1.5], "paper_b.claims.ics_typical_share.1"),
+    # the stability boundaries: a span missing its base value, m_bar at the existence bound,
+    # steps out of order, a span upside down
+    ("paper_b.boundaries.beta", {"min": 2.0, "max": 10.0}, None),
+    ("paper_b.boundaries.m_bar", {"min": 0.006, "max": 0.5}, "paper_b.boundaries.m_bar.min"),
+    ("paper_b.boundaries.step", {"initial": 0.6, "min": 1e-7, "max": 0.5}, None),
+    ("paper_b.boundaries.zeta", {"min": 10.0, "max": 1e-4}, None),
+    ("paper_b.boundaries.omega_max", 1.0, None), ("paper_b.boundaries.tol", 0.0, None),
     # paper A
     ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),
     ("paper_a.tau_step", 200.0, None), ("paper_a.zoom", [0.0, 500.0], None),

@@ -1,8 +1,12 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
+from rotorvib.pipeline.config_checks import boundary_base
+
 B_SETUP = {
     key: B[key]
     for key in ("machine", "initial_state", "speed", "balance", "marginal_growth")
 }
+# The planes of the stability boundaries (beyond the paper): each varies one parameter.
+B_PLANES = ("beta", "m_bar", "zeta")
 # The cases of the uncertainty study (beyond the paper), from their sections of the config.
 _T2, _F7 = B["table2"], B["time_responses"]["fig7"]
 B_UNCERTAIN = {
@@ -166,6 +170,21 @@ FIGURES["b"] = {
         )
         for case, spec in B_UNCERTAIN.items()
     },
+    "boundaries": figure(
+        "boundaries",
+        {
+            "beta": "boundary_beta",
+            "m_bar": "boundary_m_bar",
+            "zeta": "boundary_zeta",
+            "st2": "stability_fig2",
+            "st3": "stability_fig3",
+        },
+        "Beyond the paper: the onset of stability of the balanced state traced by "
+        "pseudo-arclength continuation far beyond the grids of Figs 2-3, in (beta, omega_bar), "
+        "(m_bar, omega_bar) and (zeta, omega_bar) (stable to the right of the boundary), "
+        "with the critical speed and the grids' exact onsets.",
+        items=["Stability boundaries"],
+    ),
     "balance_law": figure(
         "balance_law",
         {"law": "balance_law"},
@@ -271,6 +290,27 @@ rule b_stability:
         "Paper B: stability map of {wildcards.fig}"
     script:
         "../scripts/b_stability.py"
+
+
+rule b_boundary:
+    output:
+        dataset("b", "boundary_{plane}"),
+    log:
+        logs("b_boundary_{plane}"),
+    wildcard_constraints:
+        plane="|".join(B_PLANES),
+    # small eigenvalue problems along a curve: runs where Snakemake runs
+    localrule: True
+    params:
+        base=boundary_base(B),
+        span=lambda wc: B["boundaries"][wc.plane],
+        trace={k: B["boundaries"][k] for k in ("omega_max", "step", "tol")},
+        n=B["machine"]["n"],
+        neutral=B["marginal_growth"],
+    message:
+        "Paper B (beyond the paper): the stability boundary in ({wildcards.plane}, omega_bar)"
+    script:
+        "../scripts/b_boundary.py"
 
 
 rule b_balance_study:
@@ -535,6 +575,7 @@ rule b_reproduced_values:
             for case in B_UNCERTAIN
         },
         **{f"pareto_{kin}": dataset("b", f"pareto_{kin}") for kin in B["kinematics"]},
+        **{f"boundary_{plane}": dataset("b", f"boundary_{plane}") for plane in B_PLANES},
         st2=dataset("b", "stability_fig2"),
         st3=dataset("b", "stability_fig3"),
         tr=rules.b_time_responses.output[0],

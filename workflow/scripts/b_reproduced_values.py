@@ -4,6 +4,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 from rotorvib.comparison import merge_variants, paper_values_of, write_reproduced
 from rotorvib.io.datasets import read_dataset
+from rotorvib.papers.b.boundaries import boundary_rows
 from rotorvib.papers.b.claims import reproduce
 from rotorvib.papers.b.law import law_rows
 from rotorvib.papers.b.pareto import pareto_rows
@@ -14,15 +15,21 @@ producers = snakemake.params.input_producers  # each input dataset's rule and co
 p = snakemake.params
 data = {name: read_dataset(path, producers) for name, path in snakemake.input.items()
         if name != "paper_values"}
-pareto = {name.removeprefix("pareto_"): data.pop(name)
-          for name in [n for n in data if n.startswith("pareto_")]}
+
+
+def take(prefix: str) -> dict:
+    """The datasets named ``prefix<variant>``, by variant, out of ``data``."""
+    return {name.removeprefix(prefix): data.pop(name)
+            for name in [n for n in data if n.startswith(prefix)]}
+
+
+pareto, uncertainty, boundaries = take("pareto_"), take("uncertainty_"), take("boundary_")
 law = data.pop("law")
-uncertainty = {name.removeprefix("uncertainty_"): data.pop(name)
-               for name in [n for n in data if n.startswith("uncertainty_")]}
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  r_threshold=p.r_threshold, time_uncertainty=p.time_uncertainty,
                  paper_values=paper)
 rows += merge_variants({kin: pareto_rows(ds) for kin, ds in pareto.items()})
 rows += uncertainty_rows(uncertainty, paper) + law_rows(law, p.close)
+rows += boundary_rows(boundaries)
 write_reproduced(rows, snakemake.output[0])

@@ -86,11 +86,39 @@ def run_budget_problems(b: dict) -> list[str]:
     return problems
 
 
+def boundary_base(b: dict) -> dict:
+    """The base point of paper B's stability boundaries: Fig 2's m_bar and eps_bar, Fig 3's
+    beta and the machine's zeta; each plane varies one of beta, m_bar, zeta from it."""
+    maps = b["stability_maps"]
+    return {"m_bar": maps["fig2"]["m_bar"], "eps_bar": maps["fig2"]["eps_bar"],
+            "beta": maps["fig3"]["beta"], "zeta": b["machine"]["zeta"]}
+
+
+def boundary_problems(b: dict) -> list[str]:
+    """A plane of paper B's stability boundaries whose span misses its base value (tracing
+    starts there) or whose m_bar reaches the existence bound (34), and steps out of order."""
+    base, spans, found = boundary_base(b), b["boundaries"], []
+    for plane in ("beta", "m_bar", "zeta"):
+        lo, hi = spans[plane]["min"], spans[plane]["max"]
+        if not lo < base[plane] < hi:
+            found.append(f"config key 'paper_b.boundaries.{plane}': [{lo:g}, {hi:g}] must "
+                         f"contain the base value {base[plane]:g}, where tracing starts")
+    if spans["m_bar"]["min"] <= base["eps_bar"] / 2:
+        found.append(f"config key 'paper_b.boundaries.m_bar.min': {spans['m_bar']['min']:g} "
+                     f"must exceed the existence bound (34) eps_bar/2 = {base['eps_bar'] / 2:g}")
+    step = spans["step"]
+    if not step["min"] <= step["initial"] <= step["max"]:
+        found.append(f"config key 'paper_b.boundaries.step': need min <= initial <= max, got "
+                     f"{step['min']:g}, {step['initial']:g}, {step['max']:g}")
+    return found
+
+
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
     run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
-    below the existence bound, a run the engine would refuse."""
+    below the existence bound, a run the engine would refuse, a stability-boundary plane that
+    cannot start."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -105,4 +133,4 @@ def problems(config: dict) -> list[str]:
         if ga["seed"] in ga["spread_seeds"]:
             found.append(f"config key '{key}.spread_seeds': must not contain {key}.seed "
                          f"({ga['seed']}), whose result it would count twice")
-    return found + existence_problems(b) + run_budget_problems(b)
+    return found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorvib.io.coords import labels, pick
+from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
 from rotorvib.papers.b.claims import printed_values
 from rotorvib.papers.b.curves import faster_share
 from rotorvib.io.plotting import (PAPER_STYLE, figure, generation_axis, paper_vline,
@@ -364,3 +365,41 @@ def uncertainty(unc, paper):
     return sensitivity(unc, printed_values(unc, paper),
                        f"{unc.attrs['case_title']} (beta = {unc.attrs['design_beta']:g}, m = "
                        f"{1e3 * unc.attrs['design_mass']:g} g)")
+
+
+def boundaries(beta, m_bar, zeta, st2, st3, paper):
+    """Beyond the paper: the stability boundary traced by continuation in each plane (stable
+    to its right), the critical speed, the grids' exact onsets of Figs 2-3 on it, its folds,
+    and the curve's branches where another eigenvalue is unstable (not the boundary)."""
+    fig, axes = figure(1, 3, figsize=(15.0, 4.8))
+    grids = {"beta": st2, "m_bar": st3}
+    for ax, (plane, ds) in zip(axes, (("beta", beta), ("m_bar", m_bar), ("zeta", zeta))):
+        on = ds.on_boundary.values == 1
+        for b in np.unique(ds.branch.values):
+            sel = ds.branch.values == b
+            ax.plot(np.where(on, ds.omega_onset, np.nan)[sel], ds[plane].values[sel], "k-",
+                    lw=1.4, label="boundary (continuation)" if b == 0 else None)
+            ax.plot(np.where(on, np.nan, ds.omega_onset)[sel], ds[plane].values[sel], ":",
+                    color="0.5", lw=1, label="Re lambda = 0, another eigenvalue unstable"
+                    if b == 0 and (~on).any() else None)
+        ax.plot(ds.critical_speed, ds[plane], "r:", lw=1.2, label="critical speed")
+        folds = ds.fold_omega_bar.values
+        if folds.size:
+            ax.plot(ds.omega_onset.values[folds], ds[plane].values[folds], "o", mfc="none",
+                    color="C1", ms=7, label="extreme of the onset speed")
+        if plane in grids:
+            st = grids[plane]
+            ax.plot(st.stability_onset, st[plane], ".", color="C0", ms=4,
+                    label=f"Fig {2 if plane == 'beta' else 3} grid: exact onsets")
+        ax.set(xscale="log", yscale="log", xlabel="speed ratio omega/omega_n",
+               ylabel=ds[plane].attrs["long_name"],
+               title=", ".join(f"{k.removeprefix('fixed_')} = {float(ds[k]):g}"
+                               for k in ds.data_vars if k.startswith("fixed_")))
+        ax.legend(fontsize=7, loc="upper right")
+    a, _ = approach_coefficient(beta)
+    b_min, _, _ = lowest_beta(beta)
+    axes[0].text(0.3, 0.3, f"beta -> inf: omega - omega_c ~ {a:.3f} / beta\n"
+                             f"least beta balancing: {b_min:.3g}",
+                 transform=axes[0].transAxes, fontsize=8, va="bottom",
+                 bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+    return fig

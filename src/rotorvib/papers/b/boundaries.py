@@ -1,0 +1,242 @@
+"""Beyond paper B: the stability boundary of the balanced state, traced by continuation far
+beyond the grids of Figs 2-3.
+
+The balanced state turns stable where an eigenvalue ``lambda`` of its linearisation (eqs 27-32,
+:func:`rotorvib.papers.b.stability_maps.balanced_eigenvalues`) crosses the imaginary axis:
+``Re lambda(p, omega_bar) = 0`` is a curve in the plane of one parameter ``p`` (beta, m_bar or
+zeta) and the speed.  It is traced by pseudo-arclength continuation
+(:mod:`rotorvib.methods.continuation`) in ``(log10 p, omega_bar)``, following the crossing
+eigenvalue by continuity (the nearest one to its last value), so the curve stays smooth where
+another eigenvalue takes the lead.  Along it: the crossing's frequency ``Im lambda`` (a Hopf
+crossing where it is not zero), whether every other eigenvalue is stable there (then the curve
+is the boundary of the stable region), and its folds in ``p`` and ``omega_bar``.
+
+As ``beta -> inf`` the balls follow the rotor quasi-statically: eliminating the rotor from
+``M q'' + C q' + K q = 0`` leaves ``mu beta a' = -K_ar K_rr^-1 K_ra a`` for the ball angles,
+whose trace is proportional to ``1 - Omega^2`` (Omega on the total-mass scale): the onset tends
+to the critical speed ``1 / sqrt(1 + n m_bar)`` of paper B's scale, from above.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rotorvib.comparison import Margin, Reproduced
+from rotorvib.methods.continuation import gradient, trace, turning_points
+from rotorvib.models.balancer import stability
+from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta, on_boundary
+from rotorvib.papers.b.setup import dataset_attrs
+from rotorvib.papers.b.stability_maps import balanced_eigenvalues, growth_rate
+
+PLANES = {"beta": "ball damping ratio beta", "m_bar": "ball/disk mass ratio m/M",
+          "zeta": "support damping ratio zeta"}
+
+
+class TrackedEigenvalue:
+    """``Re lambda`` of one eigenvalue of the balanced state, followed by continuity over
+    ``z = (log10 p, omega_bar)``: at every call the eigenvalue nearest the last accepted one.
+    Every accepted point records the eigenvalue, the largest real part of the others and the
+    speed error ``|Re lambda| / |d Re lambda / d omega_bar|`` of the point (Newton's
+    first-order bound)."""
+
+    def __init__(self, plane: str, fixed: dict, n: int, current: complex):
+        self.plane, self.fixed, self.n, self.current = plane, fixed, n, current
+        self.crossing: list[complex] = []
+        self.others: list[float] = []
+        self.speed_error: list[float] = []
+
+    def eigenvalues(self, z) -> np.ndarray:
+        """The eight eigenvalues at ``z``."""
+        return balanced_eigenvalues(**{**self.fixed, self.plane: 10.0 ** z[0]},
+                                    omega_bar=z[1], n=self.n)
+
+    def nearest(self, z) -> complex:
+        """The eigenvalue at ``z`` nearest the tracked one."""
+        eig = self.eigenvalues(z)
+        return eig[np.argmin(np.abs(eig - self.current))]
+
+    def leading_other(self, z) -> complex:
+        """The eigenvalue with the largest real part apart from the tracked pair (upper half
+        plane of its own pair)."""
+        eig = self.others_at(z)
+        return eig[np.argmax(np.where(eig.imag >= 0, eig.real, -np.inf))]
+
+    def others_at(self, z) -> np.ndarray:
+        eig = self.eigenvalues(z)
+        lam = self.nearest(z)
+        return eig[(np.abs(eig - lam) > 1e-9) & (np.abs(eig - np.conj(lam)) > 1e-9)]
+
+    def __call__(self, z) -> float:
+        return float(self.nearest(z).real)
+
+    def accept(self, z) -> None:
+        """Follow the eigenvalue to the accepted point ``z`` and record it."""
+        self.current = self.nearest(z)
+        self.crossing.append(self.current)
+        self.others.append(float(self.others_at(z).real.max()))
+        slope = (self(z + [0.0, 1e-6]) - self(z - [0.0, 1e-6])) / 2e-6
+        self.speed_error.append(abs(self.current.real / slope))
+
+
+def onset(plane: str, fixed: dict, p: float, omega_max: float, n: int,
+          samples: int = 4000) -> float:
+    """The lowest speed at which the balanced state turns stable at ``plane = p`` (first
+    unstable -> stable sign change on ``samples`` speeds up to ``omega_max``, then Brent)."""
+    speeds = np.linspace(0.05, omega_max, samples)
+    args = {**fixed, plane: p}
+    growth = growth_rate(omega_bar=speeds, n=n, **args)
+    found = stability.stability_onsets(lambda _, w: growth_rate(omega_bar=w, n=n, **args),
+                                       speeds, growth[None, :])[0]
+    if not np.isfinite(found):
+        raise ValueError(f"the balanced state never turns stable below omega_bar = {omega_max} "
+                         f"at {plane} = {p}: no boundary to start from")
+    return float(found)
+
+
+def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4):
+    """Trace the crossing curve through ``z0`` both ways; where another eigenvalue turns
+    unstable along it (a corner of the stable region), switch to that eigenvalue's curve at the
+    corner and go on along it into the side where the old eigenvalue is stable.  Yields
+    ``(curve, tracker, points to keep)`` per branch."""
+    for sense in (-1.0, 1.0):
+        eig = TrackedEigenvalue(plane, fixed, n, 0j).eigenvalues(z0)
+        lead = eig[np.argmax(np.where(eig.imag >= 0, eig.real, -np.inf))]
+        start, direction = z0, np.array([sense, 0.0])
+        for _ in range(max_branches):
+            tracker = TrackedEigenvalue(plane, fixed, n, lead)
+            curve = trace(tracker, start, direction, bounds=bounds, step=step["initial"],
+                          min_step=step["min"], max_step=step["max"], tol=tol,
+                          accept=tracker.accept)
+            others = np.asarray(tracker.others)
+            leaves = np.flatnonzero((others[:-1] < -neutral) & (others[1:] >= -neutral))
+            if not leaves.size:
+                yield curve, tracker, len(curve.points)
+                break
+            corner = leaves[0] + 1
+            yield curve, tracker, corner + 1
+            start = curve.points[corner]
+            lead = tracker.leading_other(start)
+            # the boundary goes on along the new curve into the side where the old
+            # eigenvalue is stable
+            grad = gradient(TrackedEigenvalue(plane, fixed, n, lead), start, 1e-7)
+            along = np.array([-grad[1], grad[0]]) / np.hypot(*grad)
+            direction = along if tracker(start + 1e-4 * along) < tracker(start - 1e-4 * along) \
+                else -along
+
+
+def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_max: float,
+                     step: dict, tol: float, neutral: float, n: int = 2) -> xr.Dataset:
+    """The stability boundary through the onset of stability at ``plane = start``, traced
+    both ways over ``p_range`` (and speeds up to ``omega_max``) as branches of crossing
+    curves ``Re lambda = 0`` joined at corners (:func:`_branches`), with each point's
+    crossing frequency, the largest real part of the other eigenvalues (the curve bounds the
+    stable region where it is below ``-neutral``), the critical speed and the branch's folds."""
+    if plane not in PLANES:
+        raise ValueError(f"plane must be one of {sorted(PLANES)}, not {plane!r}")
+    z0 = np.array([np.log10(start), onset(plane, fixed, start, omega_max, n)])
+    bounds = (np.log10(p_range), (0.0, omega_max))
+    parts, stops, folds = [], [], {plane: [], "omega_bar": []}
+    for b, (curve, tracker, keep) in enumerate(_branches(plane, fixed, z0, bounds=bounds,
+                                                        step=step, tol=tol, neutral=neutral,
+                                                        n=n)):
+        k = slice(0, keep)
+        offset = sum(len(part[0]) for part in parts)
+        for j, name in enumerate((plane, "omega_bar")):
+            folds[name] += list(offset + turning_points(curve.tangents[k, j]))
+        parts.append((curve.points[k], curve.tangents[k], np.asarray(tracker.crossing)[k],
+                      np.asarray(tracker.others)[k], np.asarray(tracker.speed_error)[k],
+                      np.full(keep, b, dtype=np.int32)))
+        stops.append(curve.stop if keep == len(curve.points) else "corner")
+    points, tangents, crossing, others, error, branch = (np.concatenate(c) for c in zip(*parts))
+    p, omega = 10.0 ** points[:, 0], points[:, 1]
+    m_bar = p if plane == "m_bar" else np.full(p.shape, fixed["m_bar"])
+    one = {"units": "1"}
+    return xr.Dataset(
+        {"omega_onset": ("point", omega, {"long_name": "speed ratio omega/omega_n on the curve "
+                                                       "Re lambda = 0", **one}),
+         "branch": ("point", branch, {"long_name": "branch of the traced curve (0, 1, ...: "
+                                                    "downwards in the parameter from the "
+                                                    "start, then upwards)", **one}),
+         "frequency": ("point", np.abs(crossing.imag),
+                       {"long_name": "|Im lambda| / omega_n of the crossing eigenvalue (0: a "
+                                     "real eigenvalue crosses)", **one}),
+         "crossing_real": ("point", crossing.real,
+                           {"long_name": "Re lambda / omega_n of the crossing eigenvalue "
+                                         "(continuation residual)", **one}),
+         "omega_error": ("point", error,
+                         {"long_name": "error bound of the speed on the curve, |Re lambda| / "
+                                       "|d Re lambda / d omega_bar|", **one}),
+         "others_growth": ("point", others,
+                           {"long_name": "largest real part of the other eigenvalues / "
+                                         "omega_n", **one}),
+         "on_boundary": ("point", (others < -neutral).astype(np.int8),
+                         {"long_name": "the curve bounds the stable region here (every other "
+                                       "eigenvalue stable)", **one,
+                          "flag_values": np.int8([0, 1]), "flag_meanings": "no yes"}),
+         "critical_speed": ("point", 1 / np.sqrt(1 + n * m_bar),
+                            {"long_name": "undamped critical speed of disk and balls, "
+                                          "sqrt(M/(M + n m)) (omega_bar)", **one}),
+         "tangent": (("point", "component"), tangents,
+                     {"long_name": f"unit tangent in (log10 {plane}, omega_bar), in the "
+                                   "branch's sense of tracing", **one}),
+         **{f"fold_{name}": (f"fold_{name}", np.asarray(idx, dtype=np.int32),
+                             {"long_name": f"index of the point after which the curve turns "
+                                           f"back in {name}", **one})
+            for name, idx in folds.items()},
+         **{f"fixed_{k}": ((), float(v), {"long_name": PLANES.get(k, k), **one})
+            for k, v in fixed.items()},
+         "start": ((), float(start), {"long_name": f"{plane} at which tracing starts", **one})},
+        coords={plane: ("point", p, {"long_name": PLANES[plane], **one}),
+                "component": ("component", np.array([f"log10 {plane}", "omega_bar"],
+                                                    dtype=object),
+                              {"long_name": "component of the tangent"})},
+        attrs=dataset_attrs(f"stability boundary in ({plane}, omega_bar), beyond Figs 2-3",
+                            "The curve Re lambda = 0 of the balanced state's linearisation "
+                            "(eqs 27-32) by pseudo-arclength continuation; branches end: "
+                            + ", ".join(stops), "Figs 2-3"),
+    )
+
+
+def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
+    """Beyond the paper, on the whole traced boundary: does stability start above the critical
+    speed everywhere (Figs 2-3's first claim), and is there a least beta that balances at any
+    speed (their "range of parameters")?"""
+    edges = {plane: on_boundary(ds) for plane, ds in planes.items()}
+    excess = {plane: (e.omega_onset - e.critical_speed).values for plane, e in edges.items()}
+    lowest = min(excess, key=lambda plane: excess[plane].min())
+    i = int(np.argmin(excess[lowest]))
+    error = max(float(e.omega_error.max()) for e in edges.values())
+    spans = "; ".join(f"{plane} {float(e[plane].min()):.3g}-{float(e[plane].max()):.3g}"
+                      for plane, e in edges.items())
+    beta = planes["beta"]
+    a, a_spread = approach_coefficient(beta)
+    folds = beta.fold_omega_bar.values
+    extremes = ", ".join(f"{float(beta.omega_onset[j]):.3f} at beta = {float(beta.beta[j]):.3g}"
+                         for j in folds)
+    fold_text = (f"the onset has extremes {extremes}" if folds.size
+                 else "the onset falls monotonically with beta")
+    b_min, at, b_moves = lowest_beta(beta)
+    return [
+        Reproduced.claim(
+            "B", "boundary_above_critical",
+            Margin(float(excess[lowest][i]), error, "omega_bar",
+                   "continuation; uncertainty: the largest speed error bound on the curve"),
+            f"on the whole boundary traced by continuation ({spans}) the onset lies above the "
+            f"critical speed, closest {excess[lowest][i]:.2e} at {lowest} = "
+            f"{float(edges[lowest][lowest][i]):.3g}. As beta grows the onset tends to the "
+            f"critical speed from above as a / beta, a = {a:.4f} (beta (omega - omega_c) at "
+            f"the top within {a_spread:.1e} of it): the balls then follow the rotor "
+            "quasi-statically, and the reduced ball equation's trace changes sign exactly at "
+            "the critical speed"),
+        Reproduced.claim(
+            "B", "boundary_lowest_beta",
+            Margin(b_min, b_moves, "1", "the least beta on the boundary; uncertainty: how much "
+                                        "it moves from half the highest traced speed"),
+            f"no speed up to {at:.0f} balances beta below {b_min:.4g}: the boundary rises "
+            f"vertically there (beta moves by {b_moves:.1e} over the last half of the speeds), "
+            f"so beta = 0 and a band above it never balance; above the least beta every beta up "
+            f"to {float(beta.beta.max()):.3g} balances at a high enough speed (no upper end); "
+            f"{fold_text}, so between those speeds the beta between the curve's two branches "
+            "do not balance"),
+    ]

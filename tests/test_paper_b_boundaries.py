@@ -1,0 +1,101 @@
+"""Paper B's stability boundaries by continuation, against the grids' exact onsets, the
+analytic limit beta -> inf and brute-force checks of the least balancing beta."""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from rotorvib.models.balancer import stability
+from rotorvib.papers.b.boundaries import boundary_dataset, boundary_rows
+from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
+from rotorvib.papers.b.stability_maps import growth_rate, stability_dataset
+
+BASE = {"m_bar": 0.01, "eps_bar": 0.012, "zeta": 0.01, "beta": 1.0}
+STEP = {"initial": 0.02, "min": 1e-7, "max": 0.5}
+
+
+def plane(name, lo, hi, omega_max=20.0):
+    return boundary_dataset(name, fixed={k: v for k, v in BASE.items() if k != name},
+                            p_range=(lo, hi), start=BASE[name], omega_max=omega_max,
+                            step=STEP, tol=1e-10, neutral=1e-9)
+
+
+@pytest.fixture(scope="module")
+def beta_plane():
+    return plane("beta", 1e-4, 1e4, omega_max=50.0)
+
+
+@pytest.mark.parametrize("name, lo, hi", [("beta", 0.05, 3.0), ("m_bar", 0.007, 0.05),
+                                          ("zeta", 1e-3, 1.0)])
+def test_boundary_points_are_the_grid_method_onsets(name, lo, hi):
+    """Every traced point on the boundary within Fig 2/3-like ranges against the grid method
+    of the maps (first unstable -> stable change over 400 speeds, then Brent) at its own
+    parameter: the same speed within 1e-7."""
+    ds = plane(name, lo / 2, hi * 2)
+    inside = (ds[name].values >= lo) & (ds[name].values <= hi) & (ds.on_boundary.values == 1)
+    values, traced = ds[name].values[inside], ds.omega_onset.values[inside]
+    assert values.size >= 5
+    args = {k: v for k, v in BASE.items() if k != name}
+    speeds = np.linspace(0.05, 4.0, 400)
+    growth = np.stack([growth_rate(omega_bar=speeds, **args, **{name: v}) for v in values])
+    brent = stability.stability_onsets(
+        lambda i, w: growth_rate(omega_bar=w, **args, **{name: values[i]}), speeds, growth,
+        xtol=1e-12)
+    np.testing.assert_allclose(traced, brent, atol=1e-7)
+    assert np.max(np.abs(ds.crossing_real.values)) < 1e-9
+
+
+def test_the_map_dataset_and_the_continuation_agree_at_the_start():
+    """The start is the Fig 2 map's exact onset at beta = 1."""
+    st = stability_dataset(m_bar=0.01, eps_bar=0.012, zeta=0.01, beta=np.array([0.5, 1.0]),
+                           omega_bar=np.linspace(0.05, 4.0, 200), where="test", marginal=1e-9)
+    ds = plane("beta", 0.1, 10.0)
+    start = ds.isel(point=np.argmin(np.abs(ds.beta.values - 1.0)))
+    assert float(start.beta) == pytest.approx(1.0, rel=1e-9)
+    assert float(start.omega_onset) == pytest.approx(float(st.stability_onset[1]), abs=1e-7)
+
+
+def test_reduced_ball_equation_changes_sign_at_the_critical_speed():
+    """Symbolic: with the rotor eliminated quasi-statically (beta -> inf) the balls obey
+    mu beta a' = -S a, S = K_ar K_rr^-1 K_ra; tr S = 2 Omega^4 mu^2 (1 - Omega^2) / D with
+    D = (1 - Omega^2)^2 + 4 zeta^2 Omega^2 > 0: it vanishes at Omega = 1, the critical speed on
+    the total-mass scale."""
+    M, C, K = stability.pencil_matrices()
+    S = K[2:, :2] * K[:2, :2].inv() * K[:2, 2:]
+    mu, zeta, omega = stability.MU, stability.ZETA, stability.OMEGA
+    D = (1 - omega**2) ** 2 + 4 * zeta**2 * omega**2
+    assert sp.simplify(S.trace() - 2 * omega**4 * mu**2 * (1 - omega**2) / D) == 0
+
+
+def test_onset_tends_to_the_critical_speed_as_one_over_beta(beta_plane):
+    """omega_onset - omega_c = a / beta + O(1/beta^2): a from the top decade, and a point at
+    beta = 1e4 on the curve within 1e-3 of the critical speed, above it."""
+    a, spread = approach_coefficient(beta_plane)
+    assert 0.3 < a < 0.6 and spread < 1e-3 * a * 10
+    top = beta_plane.isel(point=np.argmax(beta_plane.beta.values))
+    excess = float(top.omega_onset - top.critical_speed)
+    assert 0 < excess < 1e-3
+    assert excess * float(top.beta) == pytest.approx(a, rel=1e-2)
+    assert float(top.frequency) == pytest.approx(0.466 / float(top.beta), rel=0.05)
+
+
+def test_least_beta_balances_nowhere_below_and_somewhere_above(beta_plane):
+    """Brute force over 4000 speeds up to 50: just below the least beta no speed is stable,
+    just above it some are."""
+    b_min, at, moves = lowest_beta(beta_plane)
+    assert moves < 1e-2 * b_min and at > 40
+    speeds = np.geomspace(0.5, 50.0, 4000)
+    args = {k: v for k, v in BASE.items() if k != "beta"}
+    assert (growth_rate(beta=0.98 * b_min, omega_bar=speeds, **args) > 0).all()
+    assert (growth_rate(beta=1.05 * b_min, omega_bar=speeds, **args) < 0).any()
+
+
+def test_rows_decide_on_the_whole_curve(beta_plane):
+    rows = {r.quantity: r for r in boundary_rows({"beta": beta_plane,
+                                                  "m_bar": plane("m_bar", 0.0061, 0.1),
+                                                  "zeta": plane("zeta", 1e-3, 10.0)})}
+    above = rows["boundary_above_critical"]
+    assert above.holds == (("", True),)
+    assert 0 < above.margin.value < 1e-3        # closest at the top of beta, ~ a / 1e4
+    assert rows["boundary_lowest_beta"].holds == (("", True),)
+    assert rows["boundary_lowest_beta"].margin.value == pytest.approx(9.53e-4, rel=2e-2)
