@@ -69,12 +69,13 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
                 neutral: float) -> xr.Dataset:
     """The law against the integration on every balanced run of ``sources`` (name ->
     ``(dataset, fixed parameters)``, :func:`run_parameters`), one ``run`` dimension: the
-    source, the kinematics, the parameters, ``sigma``, the predicted and the integrated
-    balance time."""
+    source, the kinematics, the parameters, ``sigma``, the peak force and its time, the
+    predicted and the integrated balance time."""
     wn = np.sqrt(setup.k / setup.M)
     f_threshold = setup.k * setup.criterion.r_threshold
     columns = {key: [] for key in ("source", "kinematics", "m_bar", "eps_bar", "beta",
-                                   "omega_bar", "sigma", "predicted", "balance_time")}
+                                   "omega_bar", "sigma", "t_peak", "force_peak", "predicted",
+                                   "balance_time")}
     for name, (ds, fixed) in sources.items():
         p = run_parameters(ds, fixed)
         kin = _over_runs(ds.kinematics_name, ds)
@@ -87,7 +88,8 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
         for key, values in (("source", np.full(balanced.shape, name, dtype=object)),
                             ("kinematics", kin.values.astype(object)), ("m_bar", m_bar),
                             ("eps_bar", eps), ("beta", beta), ("omega_bar", omega_bar),
-                            ("sigma", sigma), ("predicted", predicted),
+                            ("sigma", sigma), ("t_peak", ds.force_max_time.values),
+                            ("force_peak", ds.force_max.values), ("predicted", predicted),
                             ("balance_time", ds.balance_time.values)):
             columns[key].append(np.asarray(values)[balanced])
     data = {key: np.concatenate(v) for key, v in columns.items()}
@@ -100,6 +102,11 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
                                                   **one}),
          "sigma": ("run", data["sigma"], {"long_name": "slowest non-neutral decay rate of "
                                                        "the balanced state", "units": "s-1"}),
+         "t_peak": ("run", data["t_peak"], {"long_name": "time of the peak bearing force "
+                                                         "(the critical-speed passage)",
+                                            "units": "s"}),
+         "force_peak": ("run", data["force_peak"], {"long_name": "peak bearing force",
+                                                    "units": "N"}),
          "predicted": ("run", data["predicted"], {
              "long_name": "balance time by the law t_pk + ln(F_pk / (k r_thr)) / sigma",
              "units": "s"}),
@@ -154,3 +161,61 @@ def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
         f"not single them out ({on_bound[worst].mean():.0%} of them on it, "
         f"{on_bound[valued].mean():.0%} of all runs). Close means within {close:.0%}, the "
         "comparison's standard")]
+
+
+FACTORS = ("sigma", "force", "t_peak")
+
+
+def factor_shares(ds: xr.Dataset, sel: np.ndarray) -> dict[str, float]:
+    """How much of the balance times' variance over the runs ``sel`` each factor of the law
+    ``t_b = t_pk + L / sigma`` (``L = ln(F_pk / (k r_thr))``) explains alone: the squared
+    correlation with the integrated times of the law with the other two factors held at their
+    medians ("sigma", "force", "t_peak"), and of the whole law ("law")."""
+    t, tp, sigma = (ds[k].values[sel] for k in ("balance_time", "t_peak", "sigma"))
+    log_force = (ds.predicted.values[sel] - tp) * sigma
+    mt, ml, ms = np.median(tp), np.median(log_force), np.median(sigma)
+    alone = {"law": ds.predicted.values[sel], "sigma": mt + ml / sigma,
+             "force": mt + log_force / ms, "t_peak": tp + ml / ms}
+    return {k: float(np.corrcoef(v, t)[0, 1] ** 2) if np.ptp(v) > 0 else 0.0
+            for k, v in alone.items()}
+
+
+def mass_trend_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[Reproduced]:
+    """Beyond the paper: heavier balls balance later because the balanced state's slowest
+    decay rate falls with the mass?  Under each kinematics, over the mass study's balanced
+    runs: the margin is the share explained by sigma alone less the larger of the other two
+    factors' (:func:`factor_shares`), its uncertainty twice its bootstrap standard deviation;
+    it holds only if sigma also falls with the mass.  The explanation gives every source's
+    shares."""
+    valued = np.isfinite(ds.predicted.values)
+    rng = np.random.default_rng(seed)
+    holds, shares_text = {}, []
+    for kin in dict.fromkeys(ds.kinematics_name.values):
+        of_kin = valued & (ds.kinematics_name.values == kin)
+        for source in dict.fromkeys(ds.source.values):
+            sel = np.flatnonzero(of_kin & (ds.source.values == source))
+            if sel.size > 2:
+                shares = factor_shares(ds, sel)
+                first = max(FACTORS, key=shares.get)
+                shares_text.append(f"{source} ({kin}): " + ", ".join(
+                    f"{k} {v:.2f}" for k, v in shares.items()) + f" -> {first} leads")
+        sel = np.flatnonzero(of_kin & (ds.source.values == "balance_mass"))
+        if sel.size < 3:
+            holds[str(kin)] = None
+            continue
+
+        def lead(idx):
+            s = factor_shares(ds, idx)
+            return s["sigma"] - max(s["force"], s["t_peak"])
+
+        spread = np.std([lead(rng.choice(sel, sel.size)) for _ in range(resamples)])
+        falls = (np.ptp(ds.sigma.values[sel]) > 0
+                 and np.corrcoef(ds.m_bar.values[sel], ds.sigma.values[sel])[0, 1] < 0)
+        margin = lead(sel) if falls else -abs(lead(sel))
+        holds[str(kin)] = Margin(margin, 2 * float(spread), "share of variance",
+                                 f"bootstrap over {sel.size} runs")
+    return [Reproduced.claim(
+        "B", "law_explains_mass", holds,
+        "shares of the balance times' variance that each factor of the law explains alone "
+        "(sigma: the slowest decay rate; force: the passage's peak force; t_peak: its time; "
+        "law: all three): " + "; ".join(shares_text))]
