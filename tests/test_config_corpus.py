@@ -101,6 +101,9 @@ CASES = [
     ("paper_b.boundaries.step", {"initial": 0.6, "min": 1e-7, "max": 0.5}, None),
     ("paper_b.boundaries.zeta", {"min": 10.0, "max": 1e-4}, None),
     ("paper_b.boundaries.omega_max", 1.0, None), ("paper_b.boundaries.tol", 0.0, None),
+    ("paper_b.ross_check.m_bar", 0.1, None), ("paper_b.ross_check.dt", 0.0, None),
+    ("paper_b.ross_check.shaft.E", -1.0, None), ("paper_b.ross_check.speeds.n", 0, None),
+    ("paper_b.shards", 0, None), ("paper_b.shards", 2.5, None),
     # paper A
     ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),
     ("paper_a.tau_step", 200.0, None), ("paper_a.zoom", [0.0, 500.0], None),

@@ -73,6 +73,29 @@ def dataset(paper, name):
     return f"{RESULTS_DIR}/paper_{paper}/datasets/{name}.nc"
 
 
+def shard_file(paper, name):
+    """Path of one shard of a batch study's dataset ``name`` (wildcards ``shard`` and
+    ``shards``: shard k of n), gathered by the study's rule (rotorvib.pipeline.shards).
+    """
+    return f"{RESULTS_DIR}/paper_{paper}/shards/{name}.{{shard}}-of-{{shards}}.nc"
+
+
+def shards_of(paper, name, shards):
+    """Input function of a study's rule: the files of its ``shards`` shards, or none when it
+    runs as one job (``shards`` = 1)."""
+
+    def files(wildcards):
+        if shards == 1:
+            return []
+        template = shard_file(paper, name)
+        return [
+            template.format(**dict(wildcards.items()), shard=k, shards=shards)
+            for k in range(shards)
+        ]
+
+    return files
+
+
 def table(paper, name, ext):
     return f"{RESULTS_DIR}/paper_{paper}/tables/{name}.{ext}"
 
@@ -248,12 +271,23 @@ def captions(declared, kind):
     ]
 
 
-def results_of(paper, datasets, tables=()):
-    """Every final file of a paper: its figures, datasets, tables (csv and md) and the
-    reproduced values of its claims."""
+def drawn_datasets(paper):
+    """The datasets the figures of ``paper`` draw from (its FIGURES declarations)."""
+    return {
+        name for each in FIGURES[paper].values() for name in each["datasets"].values()
+    }
+
+
+def results_of(paper, datasets=(), tables=()):
+    """Every final file of a paper: its figures, the datasets they draw from and
+    ``datasets`` (those no figure draws), tables (csv and md) and the reproduced values of its
+    claims."""
     return (
         [figure_file(paper, name) for name in FIGURES[paper]]
-        + [dataset(paper, name) for name in datasets]
+        + [
+            dataset(paper, name)
+            for name in sorted(drawn_datasets(paper) | set(datasets))
+        ]
         + [table(paper, name, ext) for name in tables for ext in ("csv", "md")]
         + [reproduced_file(paper)]
     )

@@ -69,9 +69,7 @@ FIGURES["a"] = {
 }
 
 
-RESULTS["a"] = results_of(
-    "a", ["responses", "stability_region", "error_study", "slow_flow"]
-)
+RESULTS["a"] = results_of("a")
 
 
 rule a_responses:

@@ -185,6 +185,15 @@ FIGURES["b"] = {
         "with the critical speed and the grids' exact onsets.",
         items=["Stability boundaries"],
     ),
+    "ross_check": figure(
+        "ross_check",
+        {"ross": "ross_check"},
+        "Beyond the paper: paper B's rotor without balls (a Jeffcott rotor) by the closed form, "
+        "the package's engine (balls of negligible mass) and ROSS, the open rotordynamics code "
+        "(a stiff, nearly massless shaft with the disk at its middle): steady unbalance "
+        "response over the speed and the whirl through paper B's run-up. ROSS checks the "
+        "rotor's lateral dynamics, not the balls nor paper C's torsional model.",
+    ),
     "balance_law": figure(
         "balance_law",
         {"law": "balance_law"},
@@ -227,20 +236,8 @@ FIGURES["b"] = {
 
 RESULTS["b"] = results_of(
     "b",
-    [
-        "stability_fig2",
-        "stability_fig3",
-        "time_responses",
-        "ga",
-        "table1",
-        "forces",
-        "basin",
-        "balance_law",
-        "discrepancies",
-    ]
-    + [f"uncertainty_{case}" for case in B_UNCERTAIN]
-    + [f"pareto_{kin}" for kin in B["kinematics"]]
-    + [f"balance_{name}" for name in B["balance_studies"]],
+    # the datasets no figure draws (drawn_datasets adds the others)
+    ["discrepancies", "table1"],
     ["derivation_checks", "table1", "table2"],
 ) + [table("b", "kinematics", "md")]
 
@@ -313,14 +310,34 @@ rule b_boundary:
         "../scripts/b_boundary.py"
 
 
-rule b_balance_study:
+rule b_ross:
     output:
-        dataset("b", "balance_{study}"),
+        dataset("b", "ross_check"),
     log:
-        logs("b_balance_{study}"),
+        logs("b_ross"),
     benchmark:
-        benchmarks("b_balance_{study}")
+        benchmarks("b_ross")
+    priority: COMPUTES
+    params:
+        setup=B_SETUP,
+        eps_bar=B["table2"]["eps_bar"],
+        check=B["ross_check"],
+    message:
+        "Paper B (beyond the paper): the rotor without balls by the engine and by ROSS"
+    script:
+        "../scripts/b_ross.py"
+
+
+rule b_balance_study_shard:
+    output:
+        shard_file("b", "balance_{study}"),
+    log:
+        logs("b_balance_{study}.{shard}-of-{shards}"),
+    benchmark:
+        benchmarks("b_balance_{study}.{shard}-of-{shards}")
     wildcard_constraints:
+        shard=r"\d+",
+        shards=r"\d+",
         study="|".join(B["balance_studies"]),
     priority: LONGEST_CHAIN
     resources:
@@ -332,6 +349,18 @@ rule b_balance_study:
         "Paper B: balance time against {wildcards.study}"
     script:
         "../scripts/b_balance_study.py"
+
+
+# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
+use rule b_balance_study_shard as b_balance_study with:
+    input:
+        shards=shards_of("b", "balance_{study}", B["shards"]),
+    output:
+        dataset("b", "balance_{study}"),
+    log:
+        logs("b_balance_{study}"),
+    benchmark:
+        benchmarks("b_balance_{study}")
 
 
 rule b_time_responses:
@@ -371,13 +400,16 @@ rule b_ga:
         "../scripts/b_ga.py"
 
 
-rule b_table1_runs:
+rule b_table1_runs_shard:
     output:
-        dataset("b", "table1"),
+        shard_file("b", "table1"),
     log:
-        logs("b_table1_runs"),
+        logs("b_table1_runs.{shard}-of-{shards}"),
     benchmark:
-        benchmarks("b_table1_runs")
+        benchmarks("b_table1_runs.{shard}-of-{shards}")
+    wildcard_constraints:
+        shard=r"\d+",
+        shards=r"\d+",
     priority: LONGEST_CHAIN
     resources:
         runtime=30,
@@ -390,13 +422,28 @@ rule b_table1_runs:
         "../scripts/b_table1.py"
 
 
-rule b_forces:
+# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
+use rule b_table1_runs_shard as b_table1_runs with:
+    input:
+        shards=shards_of("b", "table1", B["shards"]),
     output:
-        dataset("b", "forces"),
+        dataset("b", "table1"),
     log:
-        logs("b_forces"),
+        logs("b_table1_runs"),
     benchmark:
-        benchmarks("b_forces")
+        benchmarks("b_table1_runs")
+
+
+rule b_forces_shard:
+    output:
+        shard_file("b", "forces"),
+    log:
+        logs("b_forces.{shard}-of-{shards}"),
+    benchmark:
+        benchmarks("b_forces.{shard}-of-{shards}")
+    wildcard_constraints:
+        shard=r"\d+",
+        shards=r"\d+",
     priority: LONGEST_CHAIN
     resources:
         runtime=30,
@@ -408,6 +455,18 @@ rule b_forces:
         "Paper B: bearing forces of Table 2 against the race radius"
     script:
         "../scripts/b_forces.py"
+
+
+# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
+use rule b_forces_shard as b_forces with:
+    input:
+        shards=shards_of("b", "forces", B["shards"]),
+    output:
+        dataset("b", "forces"),
+    log:
+        logs("b_forces"),
+    benchmark:
+        benchmarks("b_forces")
 
 
 rule b_uncertainty:
@@ -507,13 +566,16 @@ rule b_balance_law:
         "../scripts/b_balance_law.py"
 
 
-rule b_basin:
+rule b_basin_shard:
     output:
-        dataset("b", "basin"),
+        shard_file("b", "basin"),
     log:
-        logs("b_basin"),
+        logs("b_basin.{shard}-of-{shards}"),
     benchmark:
-        benchmarks("b_basin")
+        benchmarks("b_basin.{shard}-of-{shards}")
+    wildcard_constraints:
+        shard=r"\d+",
+        shards=r"\d+",
     priority: LONGEST_CHAIN
     resources:
         runtime=60,
@@ -526,6 +588,18 @@ rule b_basin:
         "Paper B: balance time over all initial ball positions"
     script:
         "../scripts/b_basin.py"
+
+
+# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
+use rule b_basin_shard as b_basin with:
+    input:
+        shards=shards_of("b", "basin", B["shards"]),
+    output:
+        dataset("b", "basin"),
+    log:
+        logs("b_basin"),
+    benchmark:
+        benchmarks("b_basin")
 
 
 rule b_tables:

@@ -5,9 +5,9 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 import numpy as np
 
-from rotorvib.pipeline.config import job_config
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.pipeline.shards import run_study
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import balance_study_dataset
 
@@ -16,7 +16,10 @@ use_threads(snakemake.threads)
 p = snakemake.params
 study = p.study
 values = np.linspace(study["range"]["min"], study["range"]["max"], study["range"]["n"])
-ds = balance_study_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, ics=p.ics,
-                           axis=study["axis"], values=values, each=study.get("each"),
-                           fixed=study["fixed"], where=study["where"])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))
+setup = Setup.from_config(**p.setup)
+run_study(snakemake, setup.runs,
+          lambda runs: balance_study_dataset(setup, kinematics=p.kinematics, ics=p.ics,
+                                             axis=study["axis"], values=values,
+                                             each=study.get("each"), fixed=study["fixed"],
+                                             where=study["where"], runs=runs),
+          width=N_METRICS, study=f"balance_{snakemake.wildcards.study}")

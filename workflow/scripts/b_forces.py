@@ -4,9 +4,9 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 import numpy as np
 
-from rotorvib.pipeline.config import job_config
-from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
+from rotorvib.pipeline.shards import run_study
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import force_dataset
 
@@ -15,7 +15,9 @@ use_threads(snakemake.threads)
 p = snakemake.params
 t2, cal = p.table2, p.calibration["R"]
 R_values = np.union1d(np.linspace(cal["min"], cal["max"], cal["n"]), [p.setup["machine"]["R"]])
-ds = force_dataset(Setup.from_config(**p.setup), kinematics=p.kinematics, cases=t2["cases"],
-                   R_values=R_values, speed=t2["speed"], eps_bar=t2["eps_bar"],
-                   phi0_deg=p.ics[t2["ic"]])
-write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))
+setup = Setup.from_config(**p.setup)
+run_study(snakemake, setup.runs,
+          lambda runs: force_dataset(setup, kinematics=p.kinematics, cases=t2["cases"],
+                                     R_values=R_values, speed=t2["speed"], eps_bar=t2["eps_bar"],
+                                     phi0_deg=p.ics[t2["ic"]], runs=runs),
+          width=N_METRICS, study="forces")

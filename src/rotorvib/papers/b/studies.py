@@ -49,8 +49,10 @@ def _case_coords(cases, long_name):
 
 
 def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dict,
-                 symmetric: tuple[str, str] | None = None) -> xr.Dataset:
+                 symmetric: tuple[str, str] | None = None, runs=None) -> xr.Dataset:
     """Run every point of the product of ``axes`` (name -> values) and label the metrics.
+    ``runs(inputs) -> metrics`` computes them (``setup.runs`` unless given: a shard of them or
+    the gathered shards, :mod:`rotorvib.pipeline.shards`).
 
     ``symmetric = (a, b)``: axes ``a`` and ``b`` have the same values and the metrics are
     invariant under swapping them, so only the points with ``index(a) <= index(b)`` are run and
@@ -71,8 +73,9 @@ def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dic
         index_of = {p: p if p[ia] <= p[ib] else swapped(p) for p in points}
     run = sorted(set(index_of.values()))
     row = {p: k for k, p in enumerate(run)}
-    metrics = setup.runs([make_inputs(**{name: axes[name][i] for name, i in zip(names, p)})
-                          for p in run])
+    metrics = (runs or setup.runs)([make_inputs(**{name: axes[name][i]
+                                                    for name, i in zip(names, p)})
+                                    for p in run])
     metrics = metrics[[row[index_of[p]] for p in points]]
     shape = tuple(len(v) for v in axes.values())
     data = {}
@@ -85,7 +88,8 @@ def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dic
 
 
 def balance_study_dataset(setup: Setup, *, kinematics, ics: dict, axis: str, values,
-                          each: dict | None = None, fixed: dict, where: str) -> xr.Dataset:
+                          each: dict | None = None, fixed: dict, where: str,
+                          runs=None) -> xr.Dataset:
     """Balance time against one run parameter ``axis`` (a key of
     :data:`~rotorvib.papers.b.setup.RUN_PARAMETERS`) over ``values``, for every kinematics,
     every value of the parameters in ``each`` (name -> list) and every initial condition, with
@@ -107,10 +111,11 @@ def balance_study_dataset(setup: Setup, *, kinematics, ics: dict, axis: str, val
                         dataset_attrs(f"balance time against {axis}",
                                       f"Balance time, envelope time and bearing force over "
                                       f"{axis} for each {over} ({describe(fixed)}, run-up to "
-                                      f"{setup.omega} rad/s)", where))
+                                      f"{setup.omega} rad/s)", where), runs=runs)
 
 
-def table1_dataset(setup: Setup, *, kinematics, speeds, ics: dict, beta, eps_bar, masses):
+def table1_dataset(setup: Setup, *, kinematics, speeds, ics: dict, beta, eps_bar, masses,
+                   runs=None):
     """Table 1: balance time over ball mass for each operating speed and initial condition."""
     def make_inputs(kinematics, speed, ic, mass):
         return setup.run_inputs(mass=mass, eps_bar=eps_bar, beta=beta, phi0_deg=ics[ic],
@@ -123,10 +128,12 @@ def table1_dataset(setup: Setup, *, kinematics, speeds, ics: dict, beta, eps_bar
     return grid_dataset(setup, axes, coords, make_inputs,
                         dataset_attrs("optimum ball mass against operating speed",
                                       f"Balance time over ball mass, speed and initial condition "
-                                      f"(beta = {beta}, eps_bar = {eps_bar})", "Table 1"))
+                                      f"(beta = {beta}, eps_bar = {eps_bar})", "Table 1"),
+                        runs=runs)
 
 
-def force_dataset(setup: Setup, *, kinematics, cases, R_values, speed, eps_bar, phi0_deg):
+def force_dataset(setup: Setup, *, kinematics, cases, R_values, speed, eps_bar, phi0_deg,
+                  runs=None):
     """Table 2 and the calibration of R: bearing force of each (beta, m) case against R."""
     def make_inputs(kinematics, case, R):
         beta, mass = cases[case]
@@ -140,10 +147,10 @@ def force_dataset(setup: Setup, *, kinematics, cases, R_values, speed, eps_bar, 
                         dataset_attrs("bearing forces of Table 2 against the race radius",
                                       f"Peak and decay of the bearing force at {speed} rad/s for "
                                       "the rows of Table 2, over the race radius R (not printed; "
-                                      "inferred)", "Table 2, eq. 40"))
+                                      "inferred)", "Table 2, eq. 40"), runs=runs)
 
 
-def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar, ics):
+def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar, ics, runs=None):
     """Balance time over all initial ball positions (phi1(0), phi2(0)) in [0, 360)^2, and at the
     paper's initial conditions ``ics`` (name -> angles, deg) for comparison; the balls are
     identical, so the map is symmetric under swapping them and half of it is run."""
@@ -165,13 +172,13 @@ def basin_dataset(setup: Setup, *, kinematics, cases, n, eps_bar, ics):
                           f"representative? (eps_bar = {eps_bar}; phi2 < phi1 mirrors "
                           "phi1 < phi2: identical balls)", "eq. (39)")
     grid = grid_dataset(setup, axes, coords, make_inputs, {**attrs, "eps_bar": eps_bar},
-                        symmetric=("phi1", "phi2"))
+                        symmetric=("phi1", "phi2"), runs=runs)
     names = list(ics)
     at_ics = grid_dataset(
         setup, {"kinematics": kinematics, "case": list(range(len(cases))), "ic": names},
         {**label_coord("kinematics", kinematics, KINEMATICS_LONG_NAME),
          **_case_coords(cases, "(beta, m) case"), **label_coord("ic", names, IC_LONG_NAME)},
-        lambda kinematics, case, ic: make_inputs(kinematics, case, *ics[ic]), {})
+        lambda kinematics, case, ic: make_inputs(kinematics, case, *ics[ic]), {}, runs=runs)
     for var in ("balance_time", "balanced"):
         grid[f"ic_{var}"] = at_ics[var].assign_attrs(
             long_name=f"{at_ics[var].attrs['long_name']} at the paper's initial conditions")

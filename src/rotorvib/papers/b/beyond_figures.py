@@ -1,0 +1,137 @@
+"""Paper B's figures beyond the paper: the balance-time law, the Pareto front, the stability
+boundaries by continuation and the rotor without balls against ROSS, drawn from the datasets
+only (exposed to the figure jobs by :mod:`rotorvib.papers.b.figures`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.io.plotting import figure
+from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
+
+
+def balance_law(law, paper):
+    """Beyond the paper: the balance-time law against the integration, each balanced run a
+    point (colour: study), and the distribution of the relative error with its median and
+    90th percentile."""
+    errors = law.relative_error.values
+    fig, (ax1, ax2) = figure(1, 2, figsize=(11.0, 4.6))
+    for i, source in enumerate(dict.fromkeys(law.source.values)):
+        sel = law.source.values == source
+        ax1.plot(law.balance_time.values[sel], law.predicted.values[sel], ".", ms=2.5,
+                 color=f"C{i}", alpha=0.5, label=f"{source} ({sel.sum()} runs)")
+    span = [float(np.nanmin(law.balance_time)), float(np.nanmax(law.balance_time))]
+    ax1.plot(span, span, "k", lw=1, label="law = integration")
+    ax1.set(xlabel="balance time, integration (s)", ylabel="balance time, law (s)",
+            title="t_pk + ln(F_pk / (k r_thr)) / sigma")
+    ax1.legend(fontsize=7, markerscale=3)
+    shown = errors[np.isfinite(errors)]
+    ax2.hist(100 * shown, bins=80, color="0.6", label=f"{shown.size} balanced runs")
+    for q, style in ((50, "-"), (90, "--")):
+        value = 100 * np.percentile(np.abs(shown), q)
+        ax2.axvline(value, color="C3", ls=style, lw=1.2, label=f"|error| {q}th percentile: "
+                                                               f"{value:.1f} %")
+        ax2.axvline(-value, color="C3", ls=style, lw=1.2)
+    ax2.set(xlabel="relative error of the law (%)", ylabel="runs",
+            title="error of the law over the balanced runs")
+    ax2.legend(fontsize=7)
+    return fig
+
+
+def pareto(pareto, paper):
+    """Beyond the paper: the front of mean balance time against worst peak bearing force, with
+    Table 2's rows, and where the front lies in (beta, m)."""
+    fig, (ax1, ax2) = figure(1, 2, figsize=(12.0, 4.8))
+    order = np.argsort(pareto.front_force.values)
+    t, f = pareto.front_balance_time.values[order], pareto.front_force.values[order]
+    censored = int((pareto.front_censored > 0).sum())
+    ax1.plot(f, t, "o-", color="C0", ms=4, lw=0.8,
+             label="NSGA-II front" + (f" ({censored} designs with a run not balanced by "
+                                      "t_end: no mean, not drawn)" if censored else ""))
+    for i, row in enumerate(pareto.design.values):
+        label = (f"Table 2 row {int(row)}: beta = {float(pareto.design_beta[i]):g}, "
+                 f"m = {1e3 * float(pareto.design_mass[i]):g} g")
+        ax1.plot(float(pareto.design_force[i]), float(pareto.design_balance_time[i]), "s",
+                 color=f"C{i + 1}", ms=8, mfc="none", mew=1.5, label=label)
+    ax1.set(xlabel="worst peak bearing force over the sample (N)",
+            ylabel="mean balance time over the sample (s)",
+            title=f"{pareto.sizes['position']} random initial ball positions, "
+                  f"{pareto.attrs['kinematics']} kinematics")
+    ax1.legend(fontsize=7)
+    points = ax2.scatter(pareto.front_beta.values, 1e3 * pareto.front_mass.values,
+                         c=pareto.front_force.values, cmap="viridis", s=25, label="front")
+    fig.colorbar(points, ax=ax2, label="worst peak bearing force (N)")
+    for i in range(pareto.design.size):
+        ax2.plot(float(pareto.design_beta[i]), 1e3 * float(pareto.design_mass[i]), "s",
+                 color=f"C{i + 1}", ms=8, mfc="none", mew=1.5)
+    ax2.set(xlabel="ball damping ratio beta", ylabel="ball mass m (g)",
+            title="the front's designs (squares: Table 2's rows)")
+    return fig
+
+
+def boundaries(beta, m_bar, zeta, st2, st3, paper):
+    """Beyond the paper: the stability boundary traced by continuation in each plane (stable
+    to its right), the critical speed, the grids' exact onsets of Figs 2-3 on it, its folds,
+    and the curve's branches where another eigenvalue is unstable (not the boundary)."""
+    fig, axes = figure(1, 3, figsize=(15.0, 4.8))
+    grids = {"beta": st2, "m_bar": st3}
+    for ax, (plane, ds) in zip(axes, (("beta", beta), ("m_bar", m_bar), ("zeta", zeta))):
+        on = ds.on_boundary.values == 1
+        for b in np.unique(ds.branch.values):
+            sel = ds.branch.values == b
+            ax.plot(np.where(on, ds.omega_onset, np.nan)[sel], ds[plane].values[sel], "k-",
+                    lw=1.4, label="boundary (continuation)" if b == 0 else None)
+            ax.plot(np.where(on, np.nan, ds.omega_onset)[sel], ds[plane].values[sel], ":",
+                    color="0.5", lw=1, label="Re lambda = 0, another eigenvalue unstable"
+                    if b == 0 and (~on).any() else None)
+        ax.plot(ds.critical_speed, ds[plane], "r:", lw=1.2, label="critical speed")
+        folds = ds.fold_omega_bar.values
+        if folds.size:
+            ax.plot(ds.omega_onset.values[folds], ds[plane].values[folds], "o", mfc="none",
+                    color="C1", ms=7, label="extreme of the onset speed")
+        if plane in grids:
+            st = grids[plane]
+            ax.plot(st.stability_onset, st[plane], ".", color="C0", ms=4,
+                    label=f"Fig {2 if plane == 'beta' else 3} grid: exact onsets")
+        ax.set(xscale="log", yscale="log", xlabel="speed ratio omega/omega_n",
+               ylabel=ds[plane].attrs["long_name"],
+               title=", ".join(f"{k.removeprefix('fixed_')} = {float(ds[k]):g}"
+                               for k in ds.data_vars if k.startswith("fixed_")))
+        ax.legend(fontsize=7, loc="upper right")
+    a, _ = approach_coefficient(beta)
+    b_min, _, _ = lowest_beta(beta)
+    axes[0].text(0.3, 0.3, f"beta -> inf: omega - omega_c ~ {a:.3f} / beta\n"
+                             f"least beta balancing: {b_min:.3g}",
+                 transform=axes[0].transAxes, fontsize=8, va="bottom",
+                 bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+    return fig
+
+
+def ross_check(ross, paper):
+    """Beyond the paper: paper B's rotor without balls by the closed form, the engine and ROSS:
+    steady amplitude and phase over the speed, and the whirl radius through the run-up."""
+    fig, (ax1, ax2, ax3) = figure(1, 3, figsize=(15.0, 4.6))
+    speed = ross.speed.values
+    for key, style in (("closed_form", "k-"), ("engine", "C0o"), ("ross", "C3x")):
+        label = ross[f"amplitude_{key}"].attrs["long_name"].split(", ", 1)[1]
+        ax1.plot(speed, 1e3 * ross[f"amplitude_{key}"], style, ms=5, mfc="none", label=label)
+        ax2.plot(speed, np.degrees(ross[f"phase_{key}"]), style, ms=5, mfc="none", label=label)
+    worst = max(float(np.max(np.abs(ross[f"amplitude_{k}"] / ross.amplitude_closed_form - 1)))
+                for k in ("engine", "ross"))
+    for ax in (ax1, ax2):
+        ax.axvline(float(ross.omega_n), color="0.6", ls=":", lw=1, label="omega_n")
+        ax.set(xlabel="disk speed (rad/s)")
+        ax.legend(fontsize=7)
+    ax1.set(yscale="log", ylabel="steady whirl amplitude (mm)",
+            title=f"largest relative difference from the closed form: {worst:.1e}")
+    ax2.set(ylabel="phase behind the unbalance (deg)",
+            title=f"zeta = {float(ross.zeta):g}, eps = {1e3 * float(ross.eps):g} mm")
+    t = ross.t.values
+    ax3.plot(t, 1e3 * ross.r_engine, "C0", lw=1.2, label="engine")
+    ax3.plot(t, 1e3 * ross.r_ross, "C3--", lw=1, label="ROSS (Newmark)")
+    gap = float(np.max(np.abs(ross.r_ross - ross.r_engine)) / np.max(ross.r_engine))
+    ax3.set(xlabel="time (s)", ylabel="whirl radius (mm)",
+            title=f"run-up to {float(ross.speed_runup[-1]):g} rad/s; largest gap "
+                  f"{gap:.1e} of the peak")
+    ax3.legend(fontsize=7)
+    return fig

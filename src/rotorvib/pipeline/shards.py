@@ -1,0 +1,124 @@
+"""Sharded batch studies: one study's runs split over several jobs, gathered byte for byte.
+
+A batch study calls a *runner* ``runs(inputs) -> metrics`` (one row of metrics per run, e.g.
+:meth:`rotorvib.papers.b.setup.Setup.runs`) once or a few times while it builds its dataset.
+Every run is independent and deterministic, so the rows do not depend on which job computes
+them:
+
+- a shard job ``k`` of ``n`` builds the study with :class:`ShardRuns`, which computes the runs
+  ``k, k + n, k + 2n, ...`` of every call (interleaved, so that cheap and dear runs mix) and
+  fills the others with zeros; it writes only its rows (:func:`shard_dataset`), as a checked
+  dataset with its own provenance;
+- the gathering job builds the study again with :class:`GatheredRuns`, which answers every call
+  from the shards' rows, having checked that they cover each call's runs exactly once.
+
+The gathered dataset is byte-identical to the one a single job computes
+(``tests/test_shards.py``); the number of shards is not part of its provenance.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+import xarray as xr
+
+Runner = Callable[[list], np.ndarray]
+
+
+def shard_rows(n_runs: int, shard: int, shards: int) -> np.ndarray:
+    """The runs of shard ``shard`` of ``shards``: ``shard, shard + shards, ...``."""
+    if not 0 <= shard < shards:
+        raise ValueError(f"shard {shard} must lie in [0, {shards})")
+    return np.arange(shard, n_runs, shards)
+
+
+class ShardRuns:
+    """A runner that computes one shard of every call (``width`` metrics per run) and records
+    its rows."""
+
+    def __init__(self, runs: Runner, shard: int, shards: int, width: int):
+        shard_rows(0, shard, shards)              # checks the pair
+        self.runs, self.shard, self.shards, self.width = runs, shard, shards, width
+        self.calls: list[tuple[int, np.ndarray, np.ndarray]] = []   # (n_runs, rows, metrics)
+
+    def __call__(self, inputs: list) -> np.ndarray:
+        rows = shard_rows(len(inputs), self.shard, self.shards)
+        mine = (self.runs([inputs[i] for i in rows]) if rows.size
+                else np.zeros((0, self.width)))
+        self.calls.append((len(inputs), rows, mine))
+        out = np.zeros((len(inputs), self.width))
+        out[rows] = mine
+        return out
+
+
+def shard_dataset(runner: ShardRuns, study: str) -> xr.Dataset:
+    """The rows a :class:`ShardRuns` computed, one ``run`` dimension over all its calls."""
+    one = {"units": "1"}
+    calls = runner.calls
+    return xr.Dataset(
+        {"metrics": (("run", "metric"), np.concatenate([m for _, _, m in calls]),
+                     {"long_name": "metrics of the shard's runs (rows of the engine's metric "
+                                   "table)", **one}),
+         "row": ("run", np.concatenate([r for _, r, _ in calls]).astype(np.int64),
+                 {"long_name": "index of the run in its call", **one}),
+         "call": ("run", np.concatenate([np.full(r.size, j, dtype=np.int32)
+                                         for j, (_, r, _) in enumerate(calls)]),
+                  {"long_name": "which of the study's batches the run belongs to", **one}),
+         "n_runs": ("batch", np.array([n for n, _, _ in calls], dtype=np.int64),
+                    {"long_name": "runs of each of the study's batches", **one})},
+        attrs={"title": f"shard {runner.shard} of {runner.shards} of {study}",
+               "summary": f"The runs {runner.shard}, {runner.shard} + {runner.shards}, ... of "
+                          f"every batch of {study}, gathered by its rule",
+               "references": f"{study}; rotorvib.pipeline.shards"})
+
+
+class GatheredRuns:
+    """A runner that answers each call of a study from its shards' datasets."""
+
+    def __init__(self, shards: list[xr.Dataset]):
+        self.shards = shards
+        self.call = 0
+        counts = {tuple(ds.n_runs.values) for ds in shards}
+        if len(counts) != 1:
+            raise ValueError(f"the shards come from different studies (batch sizes {counts})")
+
+    def __call__(self, inputs: list) -> np.ndarray:
+        j, self.call = self.call, self.call + 1
+        n_runs = int(self.shards[0].n_runs.values[j])
+        if n_runs != len(inputs):
+            raise ValueError(f"batch {j}: the shards hold {n_runs} runs, the study asks for "
+                             f"{len(inputs)}")
+        parts = [(ds.row.values[ds.call.values == j], ds.metrics.values[ds.call.values == j])
+                 for ds in self.shards]
+        rows = np.concatenate([r for r, _ in parts])
+        if not np.array_equal(np.sort(rows), np.arange(n_runs)):
+            raise ValueError(f"batch {j}: the shards do not hold each of its {n_runs} runs "
+                             "exactly once")
+        out = np.empty((n_runs, parts[0][1].shape[1]))
+        for r, m in parts:
+            out[r] = m
+        return out
+
+
+def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *, width: int,
+              study: str) -> None:
+    """The job of a batch study's script, whichever of its three kinds it is: a shard (the
+    wildcards ``shard`` and ``shards``: writes its rows), the gathering (named input
+    ``shards``: builds the dataset from them) or the whole study (builds it with ``runs``).
+    ``build(runner)`` builds the study's dataset from a runner."""
+    from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
+    from rotorvib.pipeline.config import job_config
+
+    provenance = Provenance(snakemake.rule, job_config(snakemake.params))
+    wildcards = dict(snakemake.wildcards.items())
+    if "shard" in wildcards:
+        runner = ShardRuns(runs, int(wildcards["shard"]), int(wildcards["shards"]), width)
+        build(runner)
+        write_dataset(shard_dataset(runner, study), snakemake.output[0], provenance)
+        return
+    paths = list(getattr(snakemake.input, "shards", []))
+    if paths:
+        producers = snakemake.params.input_producers
+        runs = GatheredRuns([read_dataset(path, producers) for path in paths])
+    write_dataset(build(runs), snakemake.output[0], provenance)

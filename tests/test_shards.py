@@ -1,0 +1,80 @@
+"""Sharded batch studies (rotorvib.pipeline.shards): a study split over jobs gives the dataset
+of one job byte for byte, and the pieces are checked before they are gathered."""
+
+import filecmp
+
+import numpy as np
+import pytest
+
+from rotorvib.pipeline.shards import GatheredRuns, ShardRuns, shard_dataset, shard_rows
+from workflow_runs import REDUCED, copy_run, job_counts, snakemake
+
+#: Every sharded study of paper B (the rules whose script calls run_study).
+SHARDED = ["balance_beta", "balance_mass", "balance_eps_bar", "table1", "forces", "basin"]
+
+
+def fake_runs(inputs):
+    """A deterministic runner: each run's metrics depend on its input alone."""
+    return np.array([[x, x**2, np.sin(x)] for x in inputs])
+
+
+def study(runs):
+    """A study of two batches of different sizes, as the basin map has."""
+    return runs(list(np.linspace(0.0, 1.0, 11))), runs(list(np.arange(3.0)))
+
+
+@pytest.mark.parametrize("shards", [1, 2, 4, 13])
+def test_gathered_shards_are_the_whole_study(shards):
+    whole = study(fake_runs)
+    pieces = []
+    for k in range(shards):
+        runner = ShardRuns(fake_runs, k, shards, width=3)
+        study(runner)
+        pieces.append(shard_dataset(runner, "a test study"))
+    gathered = study(GatheredRuns(pieces))
+    for a, b in zip(whole, gathered):
+        assert np.array_equal(a, b)
+    assert sum(p.sizes["run"] for p in pieces) == 14          # each run computed once
+
+
+def test_shards_that_do_not_cover_the_study_are_refused():
+    pieces = []
+    for k in range(3):
+        runner = ShardRuns(fake_runs, k, 3, width=3)
+        study(runner)
+        pieces.append(shard_dataset(runner, "a test study"))
+    with pytest.raises(ValueError, match="exactly once"):
+        study(GatheredRuns(pieces[:2]))                        # a shard missing
+    with pytest.raises(ValueError, match="exactly once"):
+        study(GatheredRuns([*pieces, pieces[0]]))              # one twice
+    with pytest.raises(ValueError, match="hold 11 runs, the study asks for 12"):
+        GatheredRuns(pieces)(list(range(12)))
+    other = ShardRuns(fake_runs, 0, 1, width=3)
+    other([1.0, 2.0])
+    with pytest.raises(ValueError, match="different studies"):
+        GatheredRuns([pieces[0], shard_dataset(other, "another study")])
+    with pytest.raises(ValueError, match=r"shard 3 must lie in \[0, 3\)"):
+        shard_rows(10, 3, 3)
+
+
+def test_sharded_workflow_writes_the_same_bytes(run_dir, tmp_path):
+    """The reduced run's studies (one job each) against the same studies split into three
+    shards each: every dataset byte-identical; a dry run afterwards has nothing to do, and a
+    changed study reruns its own three shards and gathering job only."""
+    work = copy_run(run_dir, tmp_path / "work")
+    (work / "sharded.yaml").write_text("results: results/sharded\npaper_b:\n  shards: 3\n")
+    sharded = [*REDUCED, "sharded.yaml"]
+    targets = [f"results/sharded/paper_b/datasets/{name}.nc" for name in SHARDED]
+    run = snakemake(work, "-j2", *sharded, "--", *targets)
+    counts = job_counts(run)
+    assert counts["b_balance_study_shard"] == 9 and counts["b_balance_study"] == 3
+    assert counts["b_basin_shard"] == counts["b_table1_runs_shard"] == 3
+    for name in SHARDED:
+        one = work / f"results/paper_b/datasets/{name}.nc"
+        assert filecmp.cmp(one, work / f"results/sharded/paper_b/datasets/{name}.nc",
+                           shallow=False), name
+    assert job_counts(snakemake(work, "-n", *sharded, "--", *targets)) == {}
+    (work / "denser.yaml").write_text(
+        "paper_b:\n  balance_studies:\n    mass:\n      range: {min: 0.006, max: 0.02, n: 4}\n")
+    again = job_counts(snakemake(work, "-n", *sharded, "denser.yaml", "--", *targets))
+    assert again == {"b_balance_study_shard": 3, "b_balance_study": 1}
