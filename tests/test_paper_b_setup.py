@@ -428,7 +428,7 @@ def test_the_factor_that_moves_the_balance_time_is_found():
     the times (share near 1), the others nothing; the mass row holds only when sigma varies
     and falls with the mass."""
     from rotorvib.comparison import claim_verdict
-    from rotorvib.papers.b.law import factor_shares, mass_trend_rows
+    from rotorvib.papers.b.law import factor_shares, trend_rows
 
     n = 40
     ramp = np.linspace(1.0, 3.0, n)
@@ -436,9 +436,9 @@ def test_the_factor_that_moves_the_balance_time_is_found():
     by_sigma = _law_runs(1 / ramp, 0.5 * flat, 2.0 * flat)          # sigma falls with mass
     shares = factor_shares(by_sigma, np.arange(n))
     assert shares["sigma"] > 0.99 and shares["force"] < 0.05 and shares["t_peak"] < 0.05
-    assert claim_verdict(mass_trend_rows(by_sigma)[0].holds) == "SUPPORTED"
+    assert claim_verdict(trend_rows(by_sigma)[0].holds) == "SUPPORTED"
     by_force = _law_runs(flat, 0.5 * flat, ramp)
     assert factor_shares(by_force, np.arange(n))["force"] > 0.99
-    assert claim_verdict(mass_trend_rows(by_force)[0].holds) == "NOT SUPPORTED"
+    assert claim_verdict(trend_rows(by_force)[0].holds) == "NOT SUPPORTED"
     rising = _law_runs(ramp, 0.5 * flat, 2.0 * flat)                # sigma rises with mass
-    assert claim_verdict(mass_trend_rows(rising)[0].holds) == "NOT SUPPORTED"
+    assert claim_verdict(trend_rows(rising)[0].holds) == "NOT SUPPORTED"

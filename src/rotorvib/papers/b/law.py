@@ -180,42 +180,53 @@ def factor_shares(ds: xr.Dataset, sel: np.ndarray) -> dict[str, float]:
             for k, v in alone.items()}
 
 
-def mass_trend_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[Reproduced]:
-    """Beyond the paper: heavier balls balance later because the balanced state's slowest
-    decay rate falls with the mass?  Under each kinematics, over the mass study's balanced
-    runs: the margin is the share explained by sigma alone less the larger of the other two
-    factors' (:func:`factor_shares`), its uncertainty twice its bootstrap standard deviation;
-    it holds only if sigma also falls with the mass.  The explanation gives every source's
-    shares."""
+#: The trends the law explains: row -> (the study's source, its axis in the law's dataset).
+TRENDS = {"law_explains_mass": ("balance_mass", "m_bar"),
+          "law_explains_beta": ("balance_beta", "beta")}
+
+
+def trend_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[Reproduced]:
+    """Beyond the paper: does the balance time rise along each study of :data:`TRENDS` (heavier
+    balls, more ball damping) because the balanced state's slowest decay rate falls along it?
+    Under each kinematics, over the study's balanced runs: the margin is the share explained by
+    sigma alone less the larger of the other two factors' (:func:`factor_shares`), its
+    uncertainty twice its bootstrap standard deviation; it holds only if sigma also falls along
+    the axis.  The first row's explanation gives every source's shares."""
     valued = np.isfinite(ds.predicted.values)
     rng = np.random.default_rng(seed)
-    holds, shares_text = {}, []
+    shares_text = []
     for kin in dict.fromkeys(ds.kinematics_name.values):
-        of_kin = valued & (ds.kinematics_name.values == kin)
         for source in dict.fromkeys(ds.source.values):
-            sel = np.flatnonzero(of_kin & (ds.source.values == source))
+            sel = np.flatnonzero(valued & (ds.kinematics_name.values == kin)
+                                 & (ds.source.values == source))
             if sel.size > 2:
                 shares = factor_shares(ds, sel)
                 first = max(FACTORS, key=shares.get)
                 shares_text.append(f"{source} ({kin}): " + ", ".join(
                     f"{k} {v:.2f}" for k, v in shares.items()) + f" -> {first} leads")
-        sel = np.flatnonzero(of_kin & (ds.source.values == "balance_mass"))
-        if sel.size < 3:
-            holds[str(kin)] = None
-            continue
 
-        def lead(idx):
-            s = factor_shares(ds, idx)
-            return s["sigma"] - max(s["force"], s["t_peak"])
+    def lead(idx):
+        s = factor_shares(ds, idx)
+        return s["sigma"] - max(s["force"], s["t_peak"])
 
-        spread = np.std([lead(rng.choice(sel, sel.size)) for _ in range(resamples)])
-        falls = (np.ptp(ds.sigma.values[sel]) > 0
-                 and np.corrcoef(ds.m_bar.values[sel], ds.sigma.values[sel])[0, 1] < 0)
-        margin = lead(sel) if falls else -abs(lead(sel))
-        holds[str(kin)] = Margin(margin, 2 * float(spread), "share of variance",
-                                 f"bootstrap over {sel.size} runs")
-    return [Reproduced.claim(
-        "B", "law_explains_mass", holds,
-        "shares of the balance times' variance that each factor of the law explains alone "
-        "(sigma: the slowest decay rate; force: the passage's peak force; t_peak: its time; "
-        "law: all three): " + "; ".join(shares_text))]
+    rows = []
+    for quantity, (source, axis) in TRENDS.items():
+        holds = {}
+        for kin in dict.fromkeys(ds.kinematics_name.values):
+            sel = np.flatnonzero(valued & (ds.kinematics_name.values == kin)
+                                 & (ds.source.values == source))
+            if sel.size < 3:
+                holds[str(kin)] = None
+                continue
+            spread = np.std([lead(rng.choice(sel, sel.size)) for _ in range(resamples)])
+            falls = (np.ptp(ds.sigma.values[sel]) > 0
+                     and np.corrcoef(ds[axis].values[sel], ds.sigma.values[sel])[0, 1] < 0)
+            margin = lead(sel) if falls else -abs(lead(sel))
+            holds[str(kin)] = Margin(margin, 2 * float(spread), "share of variance",
+                                     f"bootstrap over {sel.size} runs")
+        rows.append(Reproduced.claim(
+            "B", quantity, holds,
+            "shares of the balance times' variance that each factor of the law explains alone "
+            "(sigma: the slowest decay rate; force: the passage's peak force; t_peak: its time; "
+            "law: all three): " + "; ".join(shares_text)))
+    return rows
