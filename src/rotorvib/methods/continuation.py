@@ -36,7 +36,9 @@ def gradient(g: Callable[[np.ndarray], float], z: np.ndarray, h: float) -> np.nd
     return np.array([(g(z + e[i]) - g(z - e[i])) / (2 * h) for i in range(2)])
 
 
-def _tangent(grad: np.ndarray, previous: np.ndarray) -> np.ndarray:
+def tangent(grad: np.ndarray, previous: np.ndarray) -> np.ndarray:
+    """The unit tangent ``(-g_y, g_x) / |grad g|`` of a curve ``g = 0``, in the sense of
+    ``previous`` (their dot product is not negative)."""
     norm = np.hypot(*grad)
     if not norm > 0:
         raise ValueError(f"the gradient {tuple(grad)} gives no tangent: a singular point")
@@ -77,12 +79,12 @@ def trace(g: Callable[[np.ndarray], float], start, direction, *, bounds, step: f
         raise ValueError(f"step {step} must lie in [min_step, max_step] = "
                          f"[{min_step}, {max_step}]")
     lo, hi = np.asarray(bounds, dtype=float).T
-    z = _correct(g, np.asarray(start, dtype=float), _tangent(gradient(g, np.asarray(start, float),
+    z = _correct(g, np.asarray(start, dtype=float), tangent(gradient(g, np.asarray(start, float),
                                                                     h_fd), direction),
                  tol=tol, h_fd=h_fd)
     if z is None:
         raise ValueError(f"no point of the curve near the start {tuple(start)}")
-    t = _tangent(gradient(g, z, h_fd), np.asarray(direction, dtype=float))
+    t = tangent(gradient(g, z, h_fd), np.asarray(direction, dtype=float))
     points, tangents = [z], [t]
     if accept:
         accept(z)
@@ -104,7 +106,7 @@ def trace(g: Callable[[np.ndarray], float], start, direction, *, bounds, step: f
             if h < min_step or closing > 8:
                 return Curve(np.array(points), np.array(tangents), "reached the bounds")
             continue
-        z, t = new, _tangent(gradient(g, new, h_fd), t)
+        z, t = new, tangent(gradient(g, new, h_fd), t)
         points.append(z)
         tangents.append(t)
         if accept:

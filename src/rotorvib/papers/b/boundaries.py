@@ -23,7 +23,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
-from rotorvib.methods.continuation import gradient, trace, turning_points
+from rotorvib.methods.continuation import gradient, tangent, trace, turning_points
 from rotorvib.models.balancer import stability
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta, on_boundary
 from rotorvib.papers.b.setup import dataset_attrs
@@ -119,8 +119,8 @@ def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4
             lead = tracker.leading_other(start)
             # the boundary goes on along the new curve into the side where the old
             # eigenvalue is stable
-            grad = gradient(TrackedEigenvalue(plane, fixed, n, lead), start, 1e-7)
-            along = np.array([-grad[1], grad[0]]) / np.hypot(*grad)
+            along = tangent(gradient(TrackedEigenvalue(plane, fixed, n, lead), start, 1e-7),
+                            direction)
             direction = along if tracker(start + 1e-4 * along) < tracker(start - 1e-4 * along) \
                 else -along
 
