@@ -676,6 +676,8 @@ rule b_reproduced_values:
         time_uncertainty=B["claims"]["time_uncertainty"],
         r_threshold=B["balance"]["r_threshold"],
         close=CLOSE,
+        zeta=B["machine"]["zeta"],
+        neutral=B["marginal_growth"],
     message:
         "Paper B: measuring the paper's stated values and claims on the datasets"
     script:
