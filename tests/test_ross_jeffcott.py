@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from rotorvib.papers.b import ross_model
-from rotorvib.papers.b.jeffcott import jeffcott_dataset, steady_response
+from rotorvib.papers.b.jeffcott import ballless, jeffcott_dataset, steady_response
 from rotorvib.papers.b.setup import Setup
 
 SPEEDS = np.array([20.0, 60.0, 95.0, 100.0, 105.0, 150.0, 300.0])
@@ -16,16 +16,15 @@ def case(config):
     b = config["paper_b"]
     setup = Setup.from_paper_b(b)
     check = b["ross_check"]
-    c = 2 * setup.zeta * np.sqrt(setup.k * setup.M)
-    model = ross_model.rotor(setup.M, setup.k, c, check["shaft"])
     eps_bar = b["table2"]["eps_bar"]
-    unbalance = setup.M * eps_bar * setup.R
+    rotor = ballless(setup, eps_bar, check["m_bar"])
+    model = ross_model.rotor(rotor.M, rotor.k, rotor.c, check["shaft"])
+    unbalance = rotor.M * rotor.eps
     ds = jeffcott_dataset(
         setup, eps_bar=eps_bar, m_bar=check["m_bar"], speeds=SPEEDS, settle=check["settle"],
         t_end=1.0, dt=check["dt"],
         ross_steady=lambda w: ross_model.steady(model, unbalance, w),
-        ross_runup=lambda t, p: ross_model.runup(model, unbalance, t, p.speed(t)[0],
-                                                 p.speed(t)[1], p.speed(t)[3]))
+        ross_runup=lambda t, kinematics: ross_model.runup(model, unbalance, t, kinematics))
     return ds, setup, check
 
 

@@ -7,23 +7,22 @@ import numpy as np
 from rotorvib.pipeline.config import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b import ross_model
-from rotorvib.papers.b.jeffcott import jeffcott_dataset
+from rotorvib.papers.b.jeffcott import ballless, jeffcott_dataset
 from rotorvib.papers.b.setup import Setup
 
 job.start(snakemake.log[0])
 p = snakemake.params
 setup = Setup.from_config(**p.setup)
-c = 2 * setup.zeta * np.sqrt(setup.k * setup.M)
-model = ross_model.rotor(setup.M, setup.k, c, p.check["shaft"])
-unbalance = setup.M * p.eps_bar * setup.R
+rotor = ballless(setup, p.eps_bar, p.check["m_bar"])
+model = ross_model.rotor(rotor.M, rotor.k, rotor.c, p.check["shaft"])
+unbalance = rotor.M * rotor.eps
 grid = p.check["speeds"]
 ds = jeffcott_dataset(
     setup, eps_bar=p.eps_bar, m_bar=p.check["m_bar"],
     speeds=np.linspace(grid["min"], grid["max"], grid["n"]), settle=p.check["settle"],
     t_end=p.check["t_end"], dt=p.check["dt"],
     ross_steady=lambda speeds: ross_model.steady(model, unbalance, speeds),
-    ross_runup=lambda t, profile: ross_model.runup(model, unbalance, t, *profile.speed(t)[:2],
-                                                   profile.speed(t)[3]))
+    ross_runup=lambda t, kinematics: ross_model.runup(model, unbalance, t, kinematics))
 ds["shaft_compliance"] = ((), setup.k / ross_model.shaft_stiffness(p.check["shaft"]),
                           {"long_name": "k / k_shaft: the relative compliance the ROSS model's "
                                         "shaft adds", "units": "1"})

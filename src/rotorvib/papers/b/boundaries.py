@@ -33,6 +33,11 @@ PLANES = {"beta": "ball damping ratio beta", "m_bar": "ball/disk mass ratio m/M"
           "zeta": "support damping ratio zeta"}
 
 
+def leading(eig: np.ndarray) -> complex:
+    """The eigenvalue of largest real part, of its pair the one with ``Im >= 0``."""
+    return eig[np.argmax(np.where(eig.imag >= 0, eig.real, -np.inf))]
+
+
 class TrackedEigenvalue:
     """``Re lambda`` of one eigenvalue of the balanced state, followed by continuity over
     ``z = (log10 p, omega_bar)``: at every call the eigenvalue nearest the last accepted one.
@@ -51,30 +56,25 @@ class TrackedEigenvalue:
         return balanced_eigenvalues(**{**self.fixed, self.plane: 10.0 ** z[0]},
                                     omega_bar=z[1], n=self.n)
 
-    def nearest(self, z) -> complex:
-        """The eigenvalue at ``z`` nearest the tracked one."""
+    def split(self, z) -> tuple[complex, np.ndarray]:
+        """The eigenvalue at ``z`` nearest the tracked one, and the others (its conjugate
+        left out)."""
         eig = self.eigenvalues(z)
-        return eig[np.argmin(np.abs(eig - self.current))]
+        lam = eig[np.argmin(np.abs(eig - self.current))]
+        return lam, eig[(np.abs(eig - lam) > 1e-9) & (np.abs(eig - np.conj(lam)) > 1e-9)]
 
     def leading_other(self, z) -> complex:
-        """The eigenvalue with the largest real part apart from the tracked pair (upper half
-        plane of its own pair)."""
-        eig = self.others_at(z)
-        return eig[np.argmax(np.where(eig.imag >= 0, eig.real, -np.inf))]
-
-    def others_at(self, z) -> np.ndarray:
-        eig = self.eigenvalues(z)
-        lam = self.nearest(z)
-        return eig[(np.abs(eig - lam) > 1e-9) & (np.abs(eig - np.conj(lam)) > 1e-9)]
+        """The eigenvalue with the largest real part apart from the tracked pair."""
+        return leading(self.split(z)[1])
 
     def __call__(self, z) -> float:
-        return float(self.nearest(z).real)
+        return float(self.split(z)[0].real)
 
     def accept(self, z) -> None:
         """Follow the eigenvalue to the accepted point ``z`` and record it."""
-        self.current = self.nearest(z)
+        self.current, others = self.split(z)
         self.crossing.append(self.current)
-        self.others.append(float(self.others_at(z).real.max()))
+        self.others.append(float(others.real.max()))
         slope = (self(z + [0.0, 1e-6]) - self(z - [0.0, 1e-6])) / 2e-6
         self.speed_error.append(abs(self.current.real / slope))
 
@@ -100,8 +100,7 @@ def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4
     corner and go on along it into the side where the old eigenvalue is stable.  Yields
     ``(curve, tracker, points to keep)`` per branch."""
     for sense in (-1.0, 1.0):
-        eig = TrackedEigenvalue(plane, fixed, n, 0j).eigenvalues(z0)
-        lead = eig[np.argmax(np.where(eig.imag >= 0, eig.real, -np.inf))]
+        lead = leading(TrackedEigenvalue(plane, fixed, n, 0j).eigenvalues(z0))
         start, direction = z0, np.array([sense, 0.0])
         for _ in range(max_branches):
             tracker = TrackedEigenvalue(plane, fixed, n, lead)

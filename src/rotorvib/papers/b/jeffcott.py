@@ -75,7 +75,7 @@ def engine_runup(setup: Setup, eps_bar: float, m_bar: float, t_end: float, dt: f
 def jeffcott_dataset(setup: Setup, *, eps_bar: float, m_bar: float, speeds, settle: float,
                      t_end: float, dt: float, ross_steady, ross_runup) -> xr.Dataset:
     """Steady response over ``speeds`` and the run-up, by the closed form, the engine and
-    ROSS (``ross_steady(speeds) -> H``, ``ross_runup(t, profile) -> r``)."""
+    ROSS (``ross_steady(speeds) -> H``, ``ross_runup(t, (w, w', w'', int w dt)) -> r``)."""
     speeds = np.asarray(speeds, dtype=float)
     omega_n = np.sqrt(setup.k / setup.M)
     eps = eps_bar * setup.R
@@ -83,7 +83,8 @@ def jeffcott_dataset(setup: Setup, *, eps_bar: float, m_bar: float, speeds, sett
           "engine": engine_steady(setup, eps_bar, m_bar, speeds, settle, dt),
           "ross": ross_steady(speeds)}
     t, r_engine, profile = engine_runup(setup, eps_bar, m_bar, t_end, dt)
-    r_ross = ross_runup(t, profile)
+    speed = profile.speed(t)                       # (w, w', w'', int w dt) at the samples
+    r_ross = ross_runup(t, speed)
     names = {"closed_form": "closed form", "engine": "the package's engine (balls of "
              f"mass ratio {m_bar:g})", "ross": "ROSS"}
     m = {"units": "m"}
@@ -98,7 +99,7 @@ def jeffcott_dataset(setup: Setup, *, eps_bar: float, m_bar: float, speeds, sett
          "r_engine": ("t", r_engine, {"long_name": f"whirl radius in the run-up, "
                                                       f"{names['engine']}", **m}),
          "r_ross": ("t", r_ross, {"long_name": "whirl radius in the run-up, ROSS", **m}),
-         "speed_runup": ("t", profile.speed(t)[0], {"long_name": "disk speed in the run-up",
+         "speed_runup": ("t", speed[0], {"long_name": "disk speed in the run-up",
                                                        "units": "rad s-1"}),
          "omega_n": ((), omega_n, {"long_name": "natural frequency sqrt(k/M)",
                                    "units": "rad s-1"}),

@@ -49,11 +49,12 @@ def steady(model, unbalance: float, speeds) -> np.ndarray:
     return result.forced_resp[DOF_PER_NODE * DISK_NODE]
 
 
-def runup(model, unbalance: float, t, speed, acceleration, angle) -> np.ndarray:
+def runup(model, unbalance: float, t, kinematics) -> np.ndarray:
     """ROSS's whirl radius of the disk under the unbalance force of a prescribed speed
     (``M eps (phi'^2 cos phi + phi'' sin phi, phi'^2 sin phi - phi'' cos phi)``), integrated by
     ROSS's Newmark scheme with speed-dependent matrices (``run_time_response`` with a speed
-    array)."""
+    array); ``kinematics = (w, w', w'', int w dt)`` at the times ``t``."""
+    speed, acceleration, _, angle = kinematics
     force = np.zeros((len(t), model.ndof))
     x = DOF_PER_NODE * DISK_NODE
     force[:, x] = unbalance * (speed**2 * np.cos(angle) + acceleration * np.sin(angle))
