@@ -104,6 +104,9 @@ CASES = [
     ("paper_b.ross_check.m_bar", 0.1, None), ("paper_b.ross_check.dt", 0.0, None),
     ("paper_b.ross_check.shaft.E", -1.0, None), ("paper_b.ross_check.speeds.n", 0, None),
     ("paper_b.shards", 0, None), ("paper_b.shards", 2.5, None),
+    # the GA optimum's neighbours: no step, past the criterion's t_end, no three bins to fit
+    ("paper_b.ga_law.step", 0.0, None), ("paper_b.ga_law.horizon", 25.0, None),
+    ("paper_b.ga_law.width", 3.0, "paper_b.ga_law.horizon"),
     # paper A
     ("paper_a.case.mu", -0.01, None), ("paper_a.case.rho", NAN, None),
     ("paper_a.tau_step", 200.0, None), ("paper_a.zoom", [0.0, 500.0], None),

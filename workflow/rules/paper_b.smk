@@ -203,6 +203,15 @@ FIGURES["b"] = {
         "Tables 1-2 and the basin map, and the distribution of its relative error.",
         items=["Balance-time law"],
     ),
+    "ga_law": figure(
+        "ga_law",
+        {"ga_law": "ga_law"},
+        "Beyond the paper: what the GA's optimum is. After the run-up the whirl decays on a "
+        "line of the log scale, r ~ A exp(-sigma (t - t_ramp)); around each GA optimum (beta "
+        "and m moved by the config's step) the change of the balance time splits into what the "
+        "passage leaves (the amplitude A) and how fast it decays (sigma).",
+        items=["GA optimum law"],
+    ),
     **{
         ("pareto" if kin == B["kinematics"][0] else f"pareto_{kin}"): figure(
             "pareto",
@@ -566,6 +575,28 @@ rule b_balance_law:
         "../scripts/b_balance_law.py"
 
 
+rule b_ga_law:
+    input:
+        ga=rules.b_ga.output[0],
+    output:
+        dataset("b", "ga_law"),
+    log:
+        logs("b_ga_law"),
+    benchmark:
+        benchmarks("b_ga_law")
+    priority: COMPUTES
+    params:
+        setup=B_SETUP,
+        ics=B["initial_conditions"],
+        box={"beta": B["ga"]["beta"], "mass": B["ga"]["mass"]},
+        law=B["ga_law"],
+        neutral=B["marginal_growth"],
+    message:
+        "Paper B (beyond the paper): the whirl around the GA's optima and its decay"
+    script:
+        "../scripts/b_ga_law.py"
+
+
 rule b_basin_shard:
     output:
         shard_file("b", "basin"),
@@ -660,6 +691,7 @@ rule b_reproduced_values:
         forces=rules.b_forces.output[0],
         basin=rules.b_basin.output[0],
         law=rules.b_balance_law.output[0],
+        ga_law=rules.b_ga_law.output[0],
         paper_values=PAPER_VALUES,
     output:
         reproduced_file("b"),

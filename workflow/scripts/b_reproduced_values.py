@@ -6,6 +6,7 @@ from rotorvib.comparison import merge_variants, paper_values_of, write_reproduce
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.boundaries import boundary_rows
 from rotorvib.papers.b.claims import reproduce
+from rotorvib.papers.b.ga_law import ga_law_rows
 from rotorvib.papers.b.law import law_rows, support_damping_rows, trend_rows
 from rotorvib.papers.b.pareto import pareto_rows
 from rotorvib.papers.b.uncertainty import uncertainty_rows
@@ -24,13 +25,13 @@ def take(prefix: str) -> dict:
 
 
 pareto, uncertainty, boundaries = take("pareto_"), take("uncertainty_"), take("boundary_")
-law = data.pop("law")
+law, ga_law = data.pop("law"), data.pop("ga_law")
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  r_threshold=p.r_threshold, time_uncertainty=p.time_uncertainty,
                  paper_values=paper)
 rows += merge_variants({kin: pareto_rows(ds) for kin, ds in pareto.items()})
 rows += uncertainty_rows(uncertainty, paper) + law_rows(law, p.close) + trend_rows(law)
-rows += support_damping_rows(law, p.zeta, neutral=p.neutral)
+rows += support_damping_rows(law, p.zeta, neutral=p.neutral) + ga_law_rows(ga_law)
 rows += boundary_rows(boundaries)
 write_reproduced(rows, snakemake.output[0])

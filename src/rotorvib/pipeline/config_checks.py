@@ -113,12 +113,28 @@ def boundary_problems(b: dict) -> list[str]:
     return found
 
 
+def ga_law_problems(b: dict) -> list[str]:
+    """The GA-optimum study (``paper_b.ga_law``) integrating past the balance criterion's
+    ``t_end`` (whose run budget is checked) or leaving fewer than three envelope bins after the
+    run-up and the settling time to fit a decay to."""
+    law, found = b["ga_law"], []
+    if law["horizon"] > b["balance"]["t_end"]:
+        found.append(f"config key 'paper_b.ga_law.horizon': {law['horizon']:g} s must not "
+                     f"exceed paper_b.balance.t_end = {b['balance']['t_end']:g} s")
+    start = b["speed"]["t_ramp"] + law["settle"]
+    if law["horizon"] - start < 3 * law["width"]:
+        found.append(f"config key 'paper_b.ga_law.horizon': {law['horizon']:g} s leaves fewer "
+                     f"than three bins of width {law['width']:g} s after the run-up and the "
+                     f"settling time ({start:g} s)")
+    return found
+
+
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
     run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
     below the existence bound, a run the engine would refuse, a stability-boundary plane that
-    cannot start."""
+    cannot start, a GA-optimum study with nothing to fit."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -133,4 +149,5 @@ def problems(config: dict) -> list[str]:
         if ga["seed"] in ga["spread_seeds"]:
             found.append(f"config key '{key}.spread_seeds': must not contain {key}.seed "
                          f"({ga['seed']}), whose result it would count twice")
-    return found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
+    return (found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
+            + ga_law_problems(b))

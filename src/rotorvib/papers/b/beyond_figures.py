@@ -1,11 +1,13 @@
-"""Paper B's figures beyond the paper: the balance-time law, the Pareto front, the stability
-boundaries by continuation and the rotor without balls against ROSS, drawn from the datasets
-only (exposed to the figure jobs by :mod:`rotorvib.papers.b.figures`)."""
+"""Paper B's figures beyond the paper: the balance-time law, the whirl around the GA's optima,
+the Pareto front, the stability boundaries by continuation and the rotor without balls against
+ROSS, drawn from the datasets only (exposed to the figure jobs by
+:mod:`rotorvib.papers.b.figures`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from rotorvib.io.coords import labels
 from rotorvib.io.plotting import figure
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
 
@@ -134,4 +136,50 @@ def ross_check(ross, paper):
             title=f"run-up to {float(ross.speed_runup[-1]):g} rad/s; largest gap "
                   f"{gap:.1e} of the peak")
     ax3.legend(fontsize=7)
+    return fig
+
+
+def ga_law(ga_law, paper):
+    """Beyond the paper: the whirl's envelope after the run-up at the GA optimum that beats its
+    neighbours most and at those neighbours, with the fitted lines; and, for every neighbour of
+    every optimum, the change of the balance time through the amplitude against that through
+    the decay rate."""
+    fig, (ax1, ax2) = figure(1, 2, figsize=(12.0, 4.8))
+    others = ga_law.isel(neighbour=slice(1, None))
+    gain = (others.line_time - ga_law.line_time.isel(neighbour=0)).where(
+        others.in_box == 1).min("neighbour")
+    best = np.unravel_index(int(np.argmax(np.nan_to_num(gain.values, nan=-np.inf))),
+                            gain.shape)
+    case = ga_law.isel(dict(zip(gain.dims, best)))
+    t0 = float(ga_law.t_ramp)
+    for j, name in enumerate(labels(ga_law, "neighbour")):
+        point = case.isel(neighbour=j)
+        t = point.envelope_time.values
+        label = (f"{name}: beta = {float(point.beta):.3g}, m = {1e3 * float(point.mass):.3g} g, "
+                 f"t_b = {float(point.balance_time):.2f} s"
+                 + ("" if point.in_box else " (outside the GA's box)"))
+        ax1.semilogy(t, point.envelope, "o", color=f"C{j}", ms=3, label=label)
+        ax1.semilogy(t, float(point.amplitude) * np.exp(-float(point.sigma_fit) * (t - t0)),
+                     color=f"C{j}", lw=0.8)
+    ax1.axhline(float(ga_law.r_threshold), color="k", ls="--", lw=1, label="r_thr")
+    ax1.set(xlabel="time (s)", ylabel="largest whirl radius r in each bin (m)",
+            title=f"GA optimum, {case.kinematics_name.item()} kinematics, eps_bar = "
+                  f"{float(case.eps_bar):g}, {case.ic_name.item()}\n"
+                  f"lines: A exp(-sigma (t - {t0:g} s)) fitted to the envelope")
+    ax1.legend(fontsize=7)
+    names = labels(ga_law, "neighbour")
+    for j in range(1, len(names)):
+        nb = ga_law.isel(neighbour=j)
+        use = (nb.in_box == 1).values
+        ax2.plot(nb.amplitude_term.values[use], nb.rate_term.values[use], "o", color=f"C{j}",
+                 ms=5, mfc="none", label=f"{names[j]} ({int(use.sum())} optima)")
+    span = float(np.nanmax(np.abs(ga_law.amplitude_term.values)))
+    ax2.plot([-span, span], [-span, span], "k:", lw=0.8, label="|amplitude| = |rate|")
+    ax2.plot([-span, span], [span, -span], "k:", lw=0.8)
+    ax2.axhline(0, color="0.7", lw=0.6)
+    ax2.axvline(0, color="0.7", lw=0.6)
+    ax2.set(xlabel="through the amplitude, ln(A_n / A_o) / sigma_o (s)",
+            ylabel="through the decay rate (s)",
+            title=f"change of the balance time from each optimum (step {float(ga_law.step):g})")
+    ax2.legend(fontsize=7)
     return fig
