@@ -17,7 +17,7 @@ STEP = {"initial": 0.02, "min": 1e-7, "max": 0.5}
 def plane(name, lo, hi, omega_max=20.0):
     return boundary_dataset(name, fixed={k: v for k, v in BASE.items() if k != name},
                             p_range=(lo, hi), start=BASE[name], omega_max=omega_max,
-                            step=STEP, tol=1e-10, neutral=1e-9)
+                            step=STEP, tol=1e-10, neutral=1e-9, window_samples=20000)
 
 
 @pytest.fixture(scope="module")
@@ -99,3 +99,31 @@ def test_rows_decide_on_the_whole_curve(beta_plane):
     assert 0 < above.margin.value < 1e-3        # closest at the top of beta, ~ a / 1e4
     assert rows["boundary_lowest_beta"].holds == (("", True),)
     assert rows["boundary_lowest_beta"].margin.value == pytest.approx(9.53e-4, rel=2e-2)
+
+
+def test_a_second_stable_window_above_the_critical_speed_for_heavy_balls():
+    """Up to balls as heavy as the disk a second stable window opens just above the critical
+    speed: traced as curve 1 from the range's top down to its tip (a fold in m_bar) and back.
+    Checked by brute force on 200 000 speeds between the critical speed and 1.3 times it:
+    no stable speed just below the tip's m_bar, a stable one just above."""
+    ds = plane("m_bar", 0.007, 1.0)
+    window = ds.isel(point=ds.curve.values == 1)
+    assert set(np.unique(ds.curve.values)) == {0, 1}
+    tip = int(np.argmin(window.m_bar.values))
+    m_tip = float(window.m_bar[tip])
+    assert 0.5 < m_tip < 0.65 and ds.fold_m_bar.size >= 1
+    assert np.all(window.on_boundary.values == 1)
+    assert np.all(window.omega_onset.values > window.critical_speed.values)
+    assert np.max(np.abs(window.crossing_real.values)) < 1e-9
+    args = {k: v for k, v in BASE.items() if k != "m_bar"}
+
+    def stable_near_critical(m):
+        w_c = 1 / np.sqrt(1 + 2 * m)
+        return bool(np.any(growth_rate(m, omega_bar=np.linspace(w_c, 1.3 * w_c, 200_000),
+                                       **args) < 0))
+
+    assert not stable_near_critical(0.99 * m_tip) and stable_near_critical(1.01 * m_tip)
+    rows = {r.quantity: r for r in boundary_rows({"beta": plane("beta", 1e-3, 10.0),
+                                                  "m_bar": ds, "zeta": plane("zeta", 1e-3,
+                                                                             1.0)})}
+    assert "a second stable window" in rows["boundary_above_critical"].explanation

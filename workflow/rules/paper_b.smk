@@ -310,7 +310,10 @@ rule b_boundary:
     params:
         base=boundary_base(B),
         span=lambda wc: B["boundaries"][wc.plane],
-        trace={k: B["boundaries"][k] for k in ("omega_max", "step", "tol")},
+        trace={
+            k: B["boundaries"][k]
+            for k in ("omega_max", "window_samples", "step", "tol")
+        },
         n=B["machine"]["n"],
         neutral=B["marginal_growth"],
     message:

@@ -12,6 +12,5 @@ p = snakemake.params
 plane = snakemake.wildcards.plane
 ds = boundary_dataset(plane, fixed={k: v for k, v in p.base.items() if k != plane},
                       p_range=(p.span["min"], p.span["max"]), start=p.base[plane],
-                      omega_max=p.trace["omega_max"], step=p.trace["step"],
-                      tol=p.trace["tol"], neutral=p.neutral, n=p.n)
+                      neutral=p.neutral, n=p.n, **p.trace)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -81,8 +81,13 @@ def boundaries(beta, m_bar, zeta, st2, st3, paper):
         on = ds.on_boundary.values == 1
         for b in np.unique(ds.branch.values):
             sel = ds.branch.values == b
-            ax.plot(np.where(on, ds.omega_onset, np.nan)[sel], ds[plane].values[sel], "k-",
-                    lw=1.4, label="boundary (continuation)" if b == 0 else None)
+            window = int(ds.curve.values[sel][0])
+            ax.plot(np.where(on, ds.omega_onset, np.nan)[sel], ds[plane].values[sel],
+                    "-", color="C2" if window else "k", lw=1.4,
+                    label="boundary (continuation)" if b == 0 else
+                    "another stable window (traced from the top)"
+                    if window == 1 and b == ds.branch.values[ds.curve.values == 1].min()
+                    else None)
             ax.plot(np.where(on, np.nan, ds.omega_onset)[sel], ds[plane].values[sel], ":",
                     color="0.5", lw=1, label="Re lambda = 0, another eigenvalue unstable"
                     if b == 0 and (~on).any() else None)
@@ -91,6 +96,8 @@ def boundaries(beta, m_bar, zeta, st2, st3, paper):
         if folds.size:
             ax.plot(ds.omega_onset.values[folds], ds[plane].values[folds], "o", mfc="none",
                     color="C1", ms=7, label="extreme of the onset speed")
+        if (ds.curve.values > 0).any():
+            _window_inset(ax, ds, plane)
         if plane in grids:
             st = grids[plane]
             ax.plot(st.stability_onset, st[plane], ".", color="C0", ms=4,
@@ -107,6 +114,20 @@ def boundaries(beta, m_bar, zeta, st2, st3, paper):
                  transform=axes[0].transAxes, fontsize=8, va="bottom",
                  bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
     return fig
+
+
+def _window_inset(ax, ds, plane):
+    """An inset of ``ax`` zoomed on the stable windows (curves 1, 2, ...) of a boundary dataset
+    ``ds``, with the critical speed: the windows lie just above it."""
+    w = ds.isel(point=ds.curve.values > 0)
+    inset = ax.inset_axes([0.6, 0.08, 0.36, 0.3])
+    for b in np.unique(w.branch.values):
+        sel = w.branch.values == b
+        inset.plot(w.omega_onset.values[sel], w[plane].values[sel], "-", color="C2", lw=1.2)
+    inset.plot(w.critical_speed, w[plane], "r:", lw=1.2)
+    inset.set(yscale="log", title="stable windows (zoom)")
+    inset.tick_params(which="both", labelsize=6)
+    inset.title.set_fontsize(7)
 
 
 def ross_check(ross, paper):

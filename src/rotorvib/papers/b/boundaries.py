@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from scipy.optimize import brentq
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.methods.continuation import gradient, tangent, trace, turning_points
@@ -94,12 +95,27 @@ def onset(plane: str, fixed: dict, p: float, omega_max: float, n: int,
     return float(found)
 
 
-def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4):
-    """Trace the crossing curve through ``z0`` both ways; where another eigenvalue turns
-    unstable along it (a corner of the stable region), switch to that eigenvalue's curve at the
-    corner and go on along it into the side where the old eigenvalue is stable.  Yields
-    ``(curve, tracker, points to keep)`` per branch."""
-    for sense in (-1.0, 1.0):
+def window_edges(plane: str, fixed: dict, p: float, omega_max: float, n: int,
+                 samples: int) -> list[float]:
+    """The lower edges of the stable windows on the line ``plane = p``: the unstable -> stable
+    sign changes of the growth rate on ``samples`` log-spaced speeds from 0.05 to
+    ``omega_max``, refined by Brent's method."""
+    speeds = np.geomspace(0.05, omega_max, samples)
+    args = {**fixed, plane: p}
+    growth = growth_rate(omega_bar=speeds, n=n, **args)
+    rises = np.flatnonzero((growth[:-1] > 0) & (growth[1:] <= 0))
+    return [brentq(lambda w: float(growth_rate(omega_bar=w, n=n, **args)), speeds[i],
+                   speeds[i + 1], xtol=1e-14) for i in rises]
+
+
+def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4,
+              senses=(-1.0, 1.0)):
+    """Trace the crossing curve through ``z0`` in each of ``senses`` (down, up in the
+    parameter); where another eigenvalue turns unstable along it (a corner of the stable
+    region), switch to that eigenvalue's curve at the corner and go on along it into the side
+    where the old eigenvalue is stable.  Yields ``(curve, tracker, points to keep)`` per
+    branch."""
+    for sense in senses:
         lead = leading(TrackedEigenvalue(plane, fixed, n, 0j).eigenvalues(z0))
         start, direction = z0, np.array([sense, 0.0])
         for _ in range(max_branches):
@@ -124,39 +140,68 @@ def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4
                 else -along
 
 
+def _crossings_at(x: float, parts: list, reach: float = 1e-3) -> list[float]:
+    """The speeds at which the traced parts ending within ``reach`` of ``log10 p = x`` cross
+    that line (their last point moved along its tangent onto it)."""
+    found = []
+    for points, tangents, *_ in parts:
+        (px, pw), (tx, tw) = points[-1], tangents[-1]
+        if abs(px - x) < reach and abs(tx) > 1e-12:
+            found.append(pw + tw / tx * (x - px))
+    return found
+
+
 def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_max: float,
-                     step: dict, tol: float, neutral: float, n: int = 2) -> xr.Dataset:
+                     step: dict, tol: float, neutral: float, window_samples: int,
+                     n: int = 2) -> xr.Dataset:
     """The stability boundary through the onset of stability at ``plane = start``, traced
     both ways over ``p_range`` (and speeds up to ``omega_max``) as branches of crossing
     curves ``Re lambda = 0`` joined at corners (:func:`_branches`), with each point's
     crossing frequency, the largest real part of the other eigenvalues (the curve bounds the
-    stable region where it is below ``-neutral``), the critical speed and the branch's folds."""
+    stable region where it is below ``-neutral``), the critical speed and the branch's folds.
+    Every other stable window on the line ``plane = p_range[1]`` (:func:`window_edges` with
+    ``window_samples`` speeds) is traced too, downwards from its lower edge: curve 1, 2, ...
+    (curve 0 is the one through the start)."""
     if plane not in PLANES:
         raise ValueError(f"plane must be one of {sorted(PLANES)}, not {plane!r}")
-    z0 = np.array([np.log10(start), onset(plane, fixed, start, omega_max, n)])
     bounds = (np.log10(p_range), (0.0, omega_max))
     parts, stops, folds = [], [], {plane: [], "omega_bar": []}
-    for b, (curve, tracker, keep) in enumerate(_branches(plane, fixed, z0, bounds=bounds,
-                                                        step=step, tol=tol, neutral=neutral,
-                                                        n=n)):
-        k = slice(0, keep)
-        offset = sum(len(part[0]) for part in parts)
-        for j, name in enumerate((plane, "omega_bar")):
-            folds[name] += list(offset + turning_points(curve.tangents[k, j]))
-        parts.append((curve.points[k], curve.tangents[k], np.asarray(tracker.crossing)[k],
-                      np.asarray(tracker.others)[k], np.asarray(tracker.speed_error)[k],
-                      np.full(keep, b, dtype=np.int32)))
-        stops.append(curve.stop if keep == len(curve.points) else "corner")
-    points, tangents, crossing, others, error, branch = (np.concatenate(c) for c in zip(*parts))
+
+    def add(z0, senses, index):
+        for curve, tracker, keep in _branches(plane, fixed, z0, bounds=bounds, step=step,
+                                              tol=tol, neutral=neutral, n=n, senses=senses):
+            k = slice(0, keep)
+            offset = sum(len(part[0]) for part in parts)
+            for j, name in enumerate((plane, "omega_bar")):
+                folds[name] += list(offset + turning_points(curve.tangents[k, j]))
+            parts.append((curve.points[k], curve.tangents[k], np.asarray(tracker.crossing)[k],
+                          np.asarray(tracker.others)[k], np.asarray(tracker.speed_error)[k],
+                          np.full(keep, len(parts), dtype=np.int32),
+                          np.full(keep, index, dtype=np.int32)))
+            stops.append(curve.stop if keep == len(curve.points) else "corner")
+
+    add(np.array([np.log10(start), onset(plane, fixed, start, omega_max, n)]), (-1.0, 1.0), 0)
+    top = np.log10(p_range[1])
+    windows = 0
+    for edge in window_edges(plane, fixed, p_range[1], omega_max, n, window_samples):
+        if all(abs(edge - w) > 1e-6 * edge for w in _crossings_at(top, parts)):
+            windows += 1
+            add(np.array([top, edge]), (-1.0,), windows)
+    points, tangents, crossing, others, error, branch, curve_of = (
+        np.concatenate(c) for c in zip(*parts))
     p, omega = 10.0 ** points[:, 0], points[:, 1]
     m_bar = p if plane == "m_bar" else np.full(p.shape, fixed["m_bar"])
     one = {"units": "1"}
     return xr.Dataset(
         {"omega_onset": ("point", omega, {"long_name": "speed ratio omega/omega_n on the curve "
                                                        "Re lambda = 0", **one}),
-         "branch": ("point", branch, {"long_name": "branch of the traced curve (0, 1, ...: "
+         "branch": ("point", branch, {"long_name": "branch of the traced curves (0, 1, ...: "
                                                     "downwards in the parameter from the "
-                                                    "start, then upwards)", **one}),
+                                                    "start, then upwards, then each window)",
+                                      **one}),
+         "curve": ("point", curve_of, {"long_name": "traced curve: 0 through the start, 1, "
+                                                     "2, ...: a stable window found on the "
+                                                     "line at the range's top", **one}),
          "frequency": ("point", np.abs(crossing.imag),
                        {"long_name": "|Im lambda| / omega_n of the crossing eigenvalue (0: a "
                                      "real eigenvalue crosses)", **one}),
@@ -216,6 +261,12 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
     fold_text = (f"the onset has extremes {extremes}" if folds.size
                  else "the onset falls monotonically with beta")
     b_min, at, b_moves = lowest_beta(beta)
+    windows = "".join(
+        f"; in the ({plane}, omega_bar) plane a second stable window opens for {plane} above "
+        f"{float(w[plane].min()):.3g} (its tip, at omega_bar = "
+        f"{float(w.omega_onset[int(np.argmin(w[plane].values))]):.3f}), just above the "
+        f"critical speed (closest {float((w.omega_onset - w.critical_speed).min()):.1e})"
+        for plane, e in edges.items() for w in [e.isel(point=e.curve.values > 0)] if w.sizes["point"])
     return [
         Reproduced.claim(
             "B", "boundary_above_critical",
@@ -227,7 +278,7 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
             f"critical speed from above as a / beta, a = {a:.4f} (beta (omega - omega_c) at "
             f"the top within {a_spread:.1e} of it): the balls then follow the rotor "
             "quasi-statically, and the reduced ball equation's trace changes sign exactly at "
-            "the critical speed"),
+            f"the critical speed{windows}"),
         Reproduced.claim(
             "B", "boundary_lowest_beta",
             Margin(b_min, b_moves, "1", "the least beta on the boundary; uncertainty: how much "
