@@ -251,6 +251,14 @@ RESULTS["b"] = results_of(
 ) + [table("b", "kinematics", "md")]
 
 
+rule b_datasets:
+    input:
+        [f for f in RESULTS["b"] if f.endswith(".nc")],
+    localrule: True
+    message:
+        "Paper B: every dataset"
+
+
 rule b_derivation_checks:
     output:
         csv=report_table(

@@ -1,0 +1,65 @@
+"""The cost estimate: its run counter, its refusal outside a counting pass, and its counts
+against the runs the reduced workflow really made."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.pipeline import estimate
+from workflow_runs import copy_run
+
+
+def _inputs(start, n):
+    return [(np.full(3, float(i)), np.zeros(2)) for i in range(start, start + n)]
+
+
+def test_the_counter_counts_samples_and_runs_only_small_batches():
+    """Every run-up counted; batches of at most ``computed`` go to the real runner, larger ones
+    get all-zero metrics; the sample is drawn from every batch, not the first only."""
+    real = []
+
+    def runner(setup, inputs, *, progress):
+        real.append(len(inputs))
+        return np.ones((len(inputs), N_METRICS))
+
+    counter = estimate.RunCounter(runner, sample=50, computed=10, seed=1)
+    small = counter("setup", _inputs(0, 10))
+    large = counter("setup", _inputs(10, 5000))
+    assert real == [10] and np.all(small == 1)
+    assert large.shape == (5000, N_METRICS) and not large.any()
+    assert (counter.runs, counter.counted, counter.batches) == (5010, 5000, 2)
+    labels = sorted(int(p[0]) for _, p, _ in counter.kept)
+    assert len(labels) == 50 and labels[-1] > 2500 and len(set(labels)) == 50
+
+
+def test_counting_is_refused_outside_a_counting_pass(tmp_path):
+    with pytest.raises(RuntimeError, match="not a counting pass's folder"):
+        estimate.count_runs(tmp_path)
+
+
+def test_the_counts_are_the_runs_the_workflow_makes(run_dir, tmp_path):
+    """A counting pass of the reduced configuration, in a copy of its run: each grid study's
+    count equals the runs in its dataset (the basin's: the half of its map on and above the
+    diagonal, identical balls, and the ICs' own runs); every job's
+    sampled run-ups time to a positive cost, and the report adds them up."""
+    work = copy_run(run_dir, tmp_path / "repo")
+    folder = estimate.counting_pass(work, ["config/test/config.yaml"], 2, "results/estimate/t")
+    costs = {c.job: c for c in estimate.job_costs(folder)}
+    data = work / "results/paper_b/datasets"
+
+    def size(name, *variables):
+        ds = xr.open_dataset(data / f"{name}.nc")
+        return sum(ds[v].size for v in variables)
+
+    assert costs["balance_beta"].runs == size("balance_beta", "balance_time")
+    assert costs["balance_mass"].runs == size("balance_mass", "balance_time")
+    assert costs["table1"].runs == size("table1", "balance_time")
+    basin = xr.open_dataset(data / "basin.nc")                  # half the symmetric map
+    n = basin.sizes["phi1"]
+    assert costs["basin"].runs == (basin.balance_time.size // n**2 * n * (n + 1) // 2
+                                     + basin.ic_balance_time.size)
+    assert {"ga", "uncertainty_table2", "pareto_printed"} <= set(costs)
+    assert all(c.cpu_per_run > 0 and c.runs >= c.counted for c in costs.values())
+    text = estimate.report(list(costs.values()), estimate.benchmark_cpu(folder), 2)
+    assert f"run-ups: {sum(c.runs for c in costs.values())};" in text
