@@ -129,3 +129,45 @@ def test_every_public_module_function_and_class_has_a_docstring():
                  and (inspect.isfunction(obj) or inspect.isclass(obj))
                  and not (obj.__doc__ or "").strip()]
     assert not bare, bare
+
+
+def _expand(pattern: str) -> list[str]:
+    """A path of the user guide's outputs table with its braces expanded: ``fig{2..6}.png``,
+    ``stability_fig{2,3}.nc``."""
+    match = re.search(r"\{([^}]*)\}", pattern)
+    if not match:
+        return [pattern]
+    body = match.group(1)
+    if ".." in body:
+        lo, hi = body.split("..")
+        choices = [str(k) for k in range(int(lo), int(hi) + 1)]
+    else:
+        choices = body.split(",")
+    return [path for choice in choices
+            for path in _expand(pattern[:match.start()] + choice + pattern[match.end():])]
+
+
+def test_the_outputs_table_names_every_result_and_real_rules(run_dir):
+    """The user guide's table of where each paper item lands, against a reduced run (same
+    outputs as the paper configuration): every dataset and figure the run made is in it, every
+    path it gives exists, and every rule it names is a rule of the workflow."""
+    from test_cluster import workflow_rules
+
+    text = (DOCS / "user-guide.md").read_text()
+    table = text.split("## Where each paper item lands", 1)[1].split("\n\n", 2)[1]
+    rules, paths = set(), set()
+    for row in table.splitlines()[2:]:
+        item, named, outputs = (cell.strip() for cell in row.strip("|").split("|"))
+        rules |= set(re.findall(r"`(\w+)`", named))
+        paper = item[0].lower()
+        for path in re.findall(r"`([^`]+)`", outputs):
+            path = path.removeprefix("results/")
+            if path.startswith(("datasets/", "figures/", "tables/")):
+                path = f"paper_{paper}/{path}"      # C's rows: relative to results/paper_c/
+            paths |= set(_expand(path))
+    assert rules <= workflow_rules(), rules - workflow_rules()
+    made = {p.relative_to(run_dir / "results").as_posix()
+            for kind in ("datasets", "figures") for ext in ("nc", "png")
+            for p in (run_dir / "results").glob(f"paper_*/{kind}/*.{ext}")}
+    assert made - paths == set(), "results the table does not name"
+    assert {p for p in paths if not (run_dir / "results" / p).exists()} == set()

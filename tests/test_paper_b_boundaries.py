@@ -127,3 +127,13 @@ def test_a_second_stable_window_above_the_critical_speed_for_heavy_balls():
                                                   "m_bar": ds, "zeta": plane("zeta", 1e-3,
                                                                              1.0)})}
     assert "a second stable window" in rows["boundary_above_critical"].explanation
+
+
+def test_no_boundary_to_start_from_below_the_least_beta():
+    """Below the least balancing beta (about 9.5e-4) no speed turns the balanced state
+    stable: tracing cannot start there, and says why."""
+    from rotorvib.papers.b.boundaries import onset
+
+    fixed = {k: v for k, v in BASE.items() if k != "beta"}
+    with pytest.raises(ValueError, match="never turns stable below omega_bar = 20.0"):
+        onset("beta", fixed, 5e-4, 20.0, 2, 20000)

@@ -25,7 +25,6 @@ from scipy.optimize import brentq
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.methods.continuation import gradient, tangent, trace, turning_points
-from rotorvib.models.balancer import stability
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta, on_boundary
 from rotorvib.papers.b.setup import dataset_attrs
 from rotorvib.papers.b.stability_maps import balanced_eigenvalues, growth_rate
@@ -80,21 +79,6 @@ class TrackedEigenvalue:
         self.speed_error.append(abs(self.current.real / slope))
 
 
-def onset(plane: str, fixed: dict, p: float, omega_max: float, n: int,
-          samples: int = 4000) -> float:
-    """The lowest speed at which the balanced state turns stable at ``plane = p`` (first
-    unstable -> stable sign change on ``samples`` speeds up to ``omega_max``, then Brent)."""
-    speeds = np.linspace(0.05, omega_max, samples)
-    args = {**fixed, plane: p}
-    growth = growth_rate(omega_bar=speeds, n=n, **args)
-    found = stability.stability_onsets(lambda _, w: growth_rate(omega_bar=w, n=n, **args),
-                                       speeds, growth[None, :])[0]
-    if not np.isfinite(found):
-        raise ValueError(f"the balanced state never turns stable below omega_bar = {omega_max} "
-                         f"at {plane} = {p}: no boundary to start from")
-    return float(found)
-
-
 def window_edges(plane: str, fixed: dict, p: float, omega_max: float, n: int,
                  samples: int) -> list[float]:
     """The lower edges of the stable windows on the line ``plane = p``: the unstable -> stable
@@ -106,6 +90,16 @@ def window_edges(plane: str, fixed: dict, p: float, omega_max: float, n: int,
     rises = np.flatnonzero((growth[:-1] > 0) & (growth[1:] <= 0))
     return [brentq(lambda w: float(growth_rate(omega_bar=w, n=n, **args)), speeds[i],
                    speeds[i + 1], xtol=1e-14) for i in rises]
+
+
+def onset(plane: str, fixed: dict, p: float, omega_max: float, n: int, samples: int) -> float:
+    """The lowest speed at which the balanced state turns stable at ``plane = p``: the first
+    of :func:`window_edges`."""
+    edges = window_edges(plane, fixed, p, omega_max, n, samples)
+    if not edges:
+        raise ValueError(f"the balanced state never turns stable below omega_bar = {omega_max} "
+                         f"at {plane} = {p}: no boundary to start from")
+    return edges[0]
 
 
 def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4,
@@ -180,7 +174,8 @@ def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_ma
                           np.full(keep, index, dtype=np.int32)))
             stops.append(curve.stop if keep == len(curve.points) else "corner")
 
-    add(np.array([np.log10(start), onset(plane, fixed, start, omega_max, n)]), (-1.0, 1.0), 0)
+    add(np.array([np.log10(start), onset(plane, fixed, start, omega_max, n, window_samples)]),
+        (-1.0, 1.0), 0)
     top = np.log10(p_range[1])
     windows = 0
     for edge in window_edges(plane, fixed, p_range[1], omega_max, n, window_samples):
@@ -266,7 +261,8 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
         f"{float(w[plane].min()):.3g} (its tip, at omega_bar = "
         f"{float(w.omega_onset[int(np.argmin(w[plane].values))]):.3f}), just above the "
         f"critical speed (closest {float((w.omega_onset - w.critical_speed).min()):.1e})"
-        for plane, e in edges.items() for w in [e.isel(point=e.curve.values > 0)] if w.sizes["point"])
+        for plane, e in edges.items()
+        for w in [e.isel(point=e.curve.values > 0)] if w.sizes["point"])
     return [
         Reproduced.claim(
             "B", "boundary_above_critical",
