@@ -6,11 +6,13 @@ import filecmp
 import numpy as np
 import pytest
 
-from rotorvib.pipeline.shards import GatheredRuns, ShardRuns, shard_dataset, shard_rows
+from rotorvib.methods.ga import minimise_many
+from rotorvib.pipeline.shards import (GatheredRuns, RecordedRuns, ReplayedRuns, ShardRuns,
+                                      record_dataset, shard_dataset, shard_rows)
 from workflow_runs import REDUCED, copy_run, job_counts, snakemake
 
-#: Every sharded study of paper B (the rules whose script calls run_study).
-SHARDED = ["balance_beta", "balance_mass", "balance_eps_bar", "table1", "forces", "basin"]
+#: Every sharded study of paper B (the rules whose script calls run_study or run_search).
+SHARDED = ["balance_beta", "balance_mass", "balance_eps_bar", "table1", "forces", "basin", "ga"]
 
 
 def fake_runs(inputs):
@@ -57,6 +59,54 @@ def test_shards_that_do_not_cover_the_study_are_refused():
         shard_rows(10, 3, 3)
 
 
+SEEDS = [1, 2, 3, 4, 5]
+
+
+def searches(runs, seeds=SEEDS):
+    """Independent GA searches (one per seed) of (m_0 - 0.3)^2 + x_1^2 over [-1, 1]^2, m_0 the
+    first metric of a run whose input is the design's first coordinate; every generation of
+    all of them one call of ``runs``."""
+    def objectives(xs):
+        metrics = runs([float(v) for x in xs for v in x[:, 0]])
+        f = (metrics[:, 0] - 0.3) ** 2 + np.concatenate([x[:, 1] for x in xs]) ** 2
+        return np.split(f, np.cumsum([len(x) for x in xs])[:-1])
+
+    return minimise_many(objectives, len(seeds), [-1.0, -1.0], [1.0, 1.0], pop_size=6,
+                         n_gen=4, seed=seeds)
+
+
+@pytest.mark.parametrize("shards", [1, 2, 3, 7])
+def test_searches_replayed_from_their_shards_are_the_whole_study(shards):
+    """Each shard runs its searches whole and records their runs; all the searches replayed
+    from the records give the optima and histories of one job, and no run is computed again
+    (a shard with no search, 7 > 5, records nothing)."""
+    whole = searches(fake_runs)
+    pieces = []
+    for k in range(shards):
+        recorder = RecordedRuns(fake_runs)
+        if mine := SEEDS[k::shards]:
+            searches(recorder, mine)
+        pieces.append(record_dataset(recorder, "a test search", k, shards, width=3))
+    replayed = searches(ReplayedRuns(pieces))
+    for a, b in zip(whole, replayed):
+        assert np.array_equal(a.x, b.x) and a.f == b.f
+        assert np.array_equal(a.history["best_f"], b.history["best_f"])
+    assert sum(p.sizes["run"] for p in pieces) == sum(r.history["n_eval"][-1] for r in whole)
+
+
+def test_a_replay_never_computes_a_run_no_shard_made():
+    pieces = []
+    for k in range(2):
+        recorder = RecordedRuns(fake_runs)
+        searches(recorder, SEEDS[k::2])
+        pieces.append(record_dataset(recorder, "a test search", k, 2, width=3))
+    with pytest.raises(ValueError, match="in no shard's records"):
+        searches(ReplayedRuns(pieces[:1]))                     # a shard missing
+    other = pieces[0].assign(metrics=pieces[0].metrics + 1.0)  # the same runs, other metrics
+    with pytest.raises(ValueError, match="disagree"):
+        ReplayedRuns([pieces[0], other])
+
+
 def test_sharded_workflow_writes_the_same_bytes(run_dir, tmp_path):
     """The reduced run's studies (one job each) against the same studies split into three
     shards each: every dataset byte-identical; a dry run afterwards has nothing to do, and a
@@ -68,7 +118,7 @@ def test_sharded_workflow_writes_the_same_bytes(run_dir, tmp_path):
     run = snakemake(work, "-j2", *sharded, "--", *targets)
     counts = job_counts(run)
     assert counts["b_balance_study_shard"] == 9 and counts["b_balance_study"] == 3
-    assert counts["b_basin_shard"] == counts["b_table1_runs_shard"] == 3
+    assert counts["b_basin_shard"] == counts["b_table1_runs_shard"] == counts["b_ga_shard"] == 3
     for name in SHARDED:
         one = work / f"results/paper_b/datasets/{name}.nc"
         assert filecmp.cmp(one, work / f"results/sharded/paper_b/datasets/{name}.nc",

@@ -401,13 +401,16 @@ rule b_time_responses:
         "../scripts/b_time_responses.py"
 
 
-rule b_ga:
+rule b_ga_shard:
     output:
-        dataset("b", "ga"),
+        shard_file("b", "ga"),
     log:
-        logs("b_ga"),
+        logs("b_ga.{shard}-of-{shards}"),
     benchmark:
-        benchmarks("b_ga")
+        benchmarks("b_ga.{shard}-of-{shards}")
+    wildcard_constraints:
+        shard=r"\d+",
+        shards=r"\d+",
     priority: LONGEST_CHAIN
     resources:
         runtime=60,
@@ -418,6 +421,18 @@ rule b_ga:
         "Paper B: genetic algorithm over ball damping and mass"
     script:
         "../scripts/b_ga.py"
+
+
+# The whole GA in one job, or (paper_b.shards > 1) its searches' runs replayed from its shards.
+use rule b_ga_shard as b_ga with:
+    input:
+        shards=shards_of("b", "ga", B["shards"]),
+    output:
+        dataset("b", "ga"),
+    log:
+        logs("b_ga"),
+    benchmark:
+        benchmarks("b_ga")
 
 
 rule b_table1_runs_shard:

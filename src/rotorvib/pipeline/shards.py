@@ -14,6 +14,13 @@ them:
 
 The gathered dataset is byte-identical to the one a single job computes
 (``tests/test_shards.py``); the number of shards is not part of its provenance.
+
+A study made of independent *searches* (a genetic algorithm per problem and seed) cannot be
+split that way: each generation's runs depend on the last one's metrics.  Its shard job ``k``
+runs the searches ``k, k + n, ...`` whole and records every run they make (:class:`RecordedRuns`);
+the gathering job runs all the searches again, every run answered from the records
+(:class:`ReplayedRuns`), which the searches, deterministic and independent of each other, ask
+for in the same order (:func:`run_search`).
 """
 
 from __future__ import annotations
@@ -121,4 +128,98 @@ def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *,
     if paths:
         producers = snakemake.params.input_producers
         runs = GatheredRuns([read_dataset(path, producers) for path in paths])
+    write_dataset(build(runs), snakemake.output[0], provenance)
+
+
+def run_keys(inputs: list) -> list[bytes]:
+    """Each run's identity: the bytes of its inputs (a parameter row and an initial state, or a
+    number), as float64."""
+    return [b"".join(np.ascontiguousarray(part, dtype=float).tobytes()
+                     for part in (item if isinstance(item, tuple) else (item,)))
+            for item in inputs]
+
+
+class RecordedRuns:
+    """A runner that computes every call with ``runs`` and records each run's inputs (their
+    :func:`run_keys`) and metrics: one shard of a search."""
+
+    def __init__(self, runs: Runner):
+        self.runs = runs
+        self.keys: list[bytes] = []
+        self.metrics: list[np.ndarray] = []
+
+    def __call__(self, inputs: list) -> np.ndarray:
+        metrics = self.runs(inputs)
+        self.keys += run_keys(inputs)
+        self.metrics.append(metrics)
+        return metrics
+
+
+def record_dataset(runner: RecordedRuns, study: str, shard: int, shards: int,
+                   width: int) -> xr.Dataset:
+    """The runs a :class:`RecordedRuns` computed (``width`` metrics each): their keys as bytes
+    and their metrics."""
+    keys = (np.stack([np.frombuffer(k, dtype=np.uint8) for k in runner.keys]) if runner.keys
+            else np.zeros((0, 0), dtype=np.uint8))
+    metrics = np.concatenate(runner.metrics) if runner.metrics else np.zeros((0, width))
+    return xr.Dataset(
+        {"metrics": (("run", "metric"), metrics,
+                     {"long_name": "metrics of the shard's runs (rows of the engine's metric "
+                                   "table)", "units": "1"}),
+         "key": (("run", "byte"), keys,
+                 {"long_name": "the run's inputs as the bytes of float64 values",
+                  "units": "1"})},
+        attrs={"title": f"shard {shard} of {shards} of {study}",
+               "summary": f"Every run of the searches {shard}, {shard} + {shards}, ... of "
+                          f"{study}, replayed by its rule",
+               "references": f"{study}; rotorvib.pipeline.shards"})
+
+
+class ReplayedRuns:
+    """A runner that answers each run of a search from its shards' records
+    (:func:`record_dataset`); a run no shard computed is an error, never computed here."""
+
+    def __init__(self, shards: list[xr.Dataset]):
+        self.table: dict[bytes, np.ndarray] = {}
+        for ds in shards:
+            for key, row in zip(ds.key.values, ds.metrics.values):
+                known = self.table.setdefault(key.tobytes(), row)
+                if not np.array_equal(known, row, equal_nan=True):
+                    raise ValueError("two shards disagree on the metrics of one run")
+
+    def __call__(self, inputs: list) -> np.ndarray:
+        try:
+            return np.array([self.table[k] for k in run_keys(inputs)])
+        except KeyError:
+            raise ValueError("a run of the search is in no shard's records: the shards come "
+                             "from another search") from None
+
+
+def run_search(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
+               part: Callable[[Runner, int, int], None], *, width: int, study: str,
+               seed: int | None = None) -> None:
+    """The job of a study made of independent searches (a GA per problem and seed), whichever
+    of its three kinds it is: a shard (wildcards ``shard``, ``shards``: ``part(runner, k, n)``
+    runs searches k, k + n, ... and the job writes every run they made), the gathering (named
+    input ``shards``: ``build`` replays all the searches from those records) or the whole study
+    (``build(runs)``).  A search's next runs depend on the last, so a shard cannot compute a
+    share of each batch (:func:`run_study`); the searches are independent and deterministic, so
+    the replay is the whole study byte for byte.  ``seed`` goes into the provenance."""
+    from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
+    from rotorvib.pipeline.config import job_config
+
+    provenance = Provenance(snakemake.rule, job_config(snakemake.params), seed)
+    wildcards = dict(snakemake.wildcards.items())
+    if "shard" in wildcards:
+        shard, shards = int(wildcards["shard"]), int(wildcards["shards"])
+        shard_rows(0, shard, shards)                      # checks the pair
+        runner = RecordedRuns(runs)
+        part(runner, shard, shards)
+        write_dataset(record_dataset(runner, study, shard, shards, width),
+                      snakemake.output[0], provenance)
+        return
+    paths = list(getattr(snakemake.input, "shards", []))
+    if paths:
+        producers = snakemake.params.input_producers
+        runs = ReplayedRuns([read_dataset(path, producers) for path in paths])
     write_dataset(build(runs), snakemake.output[0], provenance)

@@ -14,18 +14,21 @@ from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, 
                                      parameter_coord)
 
 
-def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float):
+def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float,
+                            runs=None):
     """``[X_i[:, (beta, mass)]] -> [balance times (s)]`` for GA problems ``{"kinematics",
     "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch, set up by
-    ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``) scores
-    ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
+    ``setup`` like every study, by ``runs(inputs) -> metrics`` (``setup.runs`` unless given: a
+    shard's recorder or replay, :mod:`rotorvib.pipeline.shards`); a censored run (not balanced
+    by the criterion's ``t_end``) scores ``censored_penalty * t_end`` (>= t_end, so that it
+    never passes for a time)."""
     number("censored_penalty", censored_penalty, minimum=1.0, inclusive=True,
            what=" (a censored run must never score as a balance time)")
+    run = runs or (lambda inputs: setup.runs(inputs, progress=False))
 
     def objectives(xs):
-        metrics = setup.runs([setup.run_inputs(mass=mass, beta=beta, **problem)
-                              for problem, x in zip(problems, xs) for beta, mass in x],
-                             progress=False)
+        metrics = run([setup.run_inputs(mass=mass, beta=beta, **problem)
+                       for problem, x in zip(problems, xs) for beta, mass in x])
         scores = np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"),
                           censored_penalty * setup.criterion.t_end)
         return np.split(scores, np.cumsum([len(x) for x in xs])[:-1])
@@ -54,26 +57,42 @@ def tune_balancer(objective, beta_bounds, mass_bounds, *, pop_size, n_gen, seed)
                     seed=seed)
 
 
+def ga_searches(kinematics, eps_bars, ics: dict, seeds) -> list[tuple[dict, int]]:
+    """The GA's searches: every kinematics x eps_bar x initial condition problem (section 9)
+    under each of ``seeds``, the first seed's problems first."""
+    problems = [{"kinematics": kin, "eps_bar": eps_bar, "phi0_deg": ics[ic]}
+                for kin in kinematics for eps_bar in eps_bars for ic in ics]
+    return [(problem, s) for s in seeds for problem in problems]
+
+
+def solve(setup: Setup, searches: list[tuple[dict, int]], *, beta_bounds, mass_bounds,
+          pop_size, n_gen, censored_penalty, runs=None) -> list[GAResult]:
+    """Run ``searches`` (:func:`ga_searches`) over the box of (beta, m) in lockstep, one batch
+    of runs per generation (:func:`balance_time_objectives`)."""
+    objectives = balance_time_objectives(setup, [problem for problem, _ in searches],
+                                         censored_penalty=censored_penalty, runs=runs)
+    return minimise_many(objectives, len(searches), *_box(beta_bounds, mass_bounds),
+                         pop_size=pop_size, n_gen=n_gen, seed=[s for _, s in searches])
+
+
 def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, mass_bounds,
-               pop_size, n_gen, seed, spread_seeds=(), censored_penalty) -> xr.Dataset:
+               pop_size, n_gen, seed, spread_seeds=(), censored_penalty,
+               runs=None) -> xr.Dataset:
     """Genetic algorithm over (beta, m) for every kinematics x eps_bar x initial condition
-    (section 9), all problems in lockstep (one batch of runs per generation).  The optimum is
+    (section 9), all problems in lockstep (:func:`solve`; ``runs`` as there).  The optimum is
     that of ``seed``; each problem is solved again from each of ``spread_seeds`` (in the same
     batches), and the ``*_by_seed`` variables hold the optima of all the seeds, the first
     ``seed``'s: the spread of a GA's answer over its seeds."""
     seeds = [seed, *spread_seeds]
     shape = (len(kinematics), len(eps_bars), len(ics))
-    problems = [{"kinematics": kin, "eps_bar": eps_bar, "phi0_deg": ics[ic]}
-                for kin in kinematics for eps_bar in eps_bars for ic in ics]
-    results = minimise_many(balance_time_objectives(setup, problems * len(seeds),
-                                                    censored_penalty=censored_penalty),
-                            len(problems) * len(seeds), *_box(beta_bounds, mass_bounds),
-                            pop_size=pop_size, n_gen=n_gen,
-                            seed=[s for s in seeds for _ in problems])
+    searches = ga_searches(kinematics, eps_bars, ics, seeds)
+    results = solve(setup, searches, beta_bounds=beta_bounds, mass_bounds=mass_bounds,
+                    pop_size=pop_size, n_gen=n_gen, censored_penalty=censored_penalty,
+                    runs=runs)
     x_all = np.moveaxis(np.array([r.x for r in results]).reshape((len(seeds),) + shape + (2,)),
                         0, -2)
     f_all = np.moveaxis(np.array([r.f for r in results]).reshape((len(seeds),) + shape), 0, -1)
-    first = results[:len(problems)]
+    first = results[:len(searches) // len(seeds)]
     history = np.array([r.history["best_f"] for r in first]).reshape(shape + (n_gen,))
     t_end = setup.criterion.t_end
     censored = f_all[..., 0] >= t_end         # scored the penalty: it is no time, kept as NaN
