@@ -108,27 +108,40 @@ class GatheredRuns:
         return out
 
 
-def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *, width: int,
-              study: str) -> None:
-    """The job of a batch study's script, whichever of its three kinds it is: a shard (the
-    wildcards ``shard`` and ``shards``: writes its rows), the gathering (named input
-    ``shards``: builds the dataset from them) or the whole study (builds it with ``runs``).
-    ``build(runner)`` builds the study's dataset from a runner."""
+def _study_job(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
+               shard_job: Callable[[int, int], xr.Dataset],
+               gathered: Callable[[list[xr.Dataset]], Runner], seed: int | None) -> None:
+    """The job of a sharded study's script, whichever of its three kinds it is: a shard (the
+    wildcards ``shard`` and ``shards``) writes ``shard_job(shard, shards)``; the gathering
+    (named input ``shards``) builds the dataset with the runner ``gathered(shard datasets)``;
+    the whole study builds it with ``runs``.  ``seed`` goes into the provenance."""
     from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
     from rotorvib.pipeline.config import job_config
 
-    provenance = Provenance(snakemake.rule, job_config(snakemake.params))
+    provenance = Provenance(snakemake.rule, job_config(snakemake.params), seed)
     wildcards = dict(snakemake.wildcards.items())
     if "shard" in wildcards:
-        runner = ShardRuns(runs, int(wildcards["shard"]), int(wildcards["shards"]), width)
-        build(runner)
-        write_dataset(shard_dataset(runner, study), snakemake.output[0], provenance)
+        write_dataset(shard_job(int(wildcards["shard"]), int(wildcards["shards"])),
+                      snakemake.output[0], provenance)
         return
     paths = list(getattr(snakemake.input, "shards", []))
     if paths:
         producers = snakemake.params.input_producers
-        runs = GatheredRuns([read_dataset(path, producers) for path in paths])
+        runs = gathered([read_dataset(path, producers) for path in paths])
     write_dataset(build(runs), snakemake.output[0], provenance)
+
+
+def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *, width: int,
+              study: str) -> None:
+    """The job of a batch study's script (:func:`_study_job`): a shard computes its rows of
+    every batch (:class:`ShardRuns`), the gathering answers every batch from them
+    (:class:`GatheredRuns`).  ``build(runner)`` builds the study's dataset from a runner."""
+    def shard_job(shard, shards):
+        runner = ShardRuns(runs, shard, shards, width)
+        build(runner)
+        return shard_dataset(runner, study)
+
+    _study_job(snakemake, runs, build, shard_job, GatheredRuns, None)
 
 
 def run_keys(inputs: list) -> list[bytes]:
@@ -198,28 +211,17 @@ class ReplayedRuns:
 def run_search(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
                part: Callable[[Runner, int, int], None], *, width: int, study: str,
                seed: int | None = None) -> None:
-    """The job of a study made of independent searches (a GA per problem and seed), whichever
-    of its three kinds it is: a shard (wildcards ``shard``, ``shards``: ``part(runner, k, n)``
-    runs searches k, k + n, ... and the job writes every run they made), the gathering (named
-    input ``shards``: ``build`` replays all the searches from those records) or the whole study
-    (``build(runs)``).  A search's next runs depend on the last, so a shard cannot compute a
-    share of each batch (:func:`run_study`); the searches are independent and deterministic, so
-    the replay is the whole study byte for byte.  ``seed`` goes into the provenance."""
-    from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
-    from rotorvib.pipeline.config import job_config
-
-    provenance = Provenance(snakemake.rule, job_config(snakemake.params), seed)
-    wildcards = dict(snakemake.wildcards.items())
-    if "shard" in wildcards:
-        shard, shards = int(wildcards["shard"]), int(wildcards["shards"])
+    """The job of a study made of independent searches (a GA per problem and seed)
+    (:func:`_study_job`): a shard runs searches k, k + n, ... whole (``part(runner, k, n)``)
+    and writes every run they made (:class:`RecordedRuns`); the gathering replays all the
+    searches (``build``) from those records (:class:`ReplayedRuns`).  A search's next runs
+    depend on the last, so a shard cannot compute a share of each batch (:func:`run_study`);
+    the searches are independent and deterministic, so the replay is the whole study byte for
+    byte."""
+    def shard_job(shard, shards):
         shard_rows(0, shard, shards)                      # checks the pair
         runner = RecordedRuns(runs)
         part(runner, shard, shards)
-        write_dataset(record_dataset(runner, study, shard, shards, width),
-                      snakemake.output[0], provenance)
-        return
-    paths = list(getattr(snakemake.input, "shards", []))
-    if paths:
-        producers = snakemake.params.input_producers
-        runs = ReplayedRuns([read_dataset(path, producers) for path in paths])
-    write_dataset(build(runs), snakemake.output[0], provenance)
+        return record_dataset(runner, study, shard, shards, width)
+
+    _study_job(snakemake, runs, build, shard_job, ReplayedRuns, seed)
