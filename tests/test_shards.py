@@ -12,7 +12,8 @@ from rotorvib.pipeline.shards import (GatheredRuns, RecordedRuns, ReplayedRuns, 
 from workflow_runs import REDUCED, copy_run, job_counts, snakemake
 
 #: Every sharded study of paper B (the rules whose script calls run_study or run_search).
-SHARDED = ["balance_beta", "balance_mass", "balance_eps_bar", "table1", "forces", "basin", "ga"]
+SHARDED = ["balance_beta", "balance_mass", "balance_eps_bar", "table1", "forces", "basin", "ga",
+           "uncertainty_table2", "uncertainty_fig7", "uncertainty_table1"]
 
 
 def fake_runs(inputs):
@@ -119,6 +120,7 @@ def test_sharded_workflow_writes_the_same_bytes(run_dir, tmp_path):
     counts = job_counts(run)
     assert counts["b_balance_study_shard"] == 9 and counts["b_balance_study"] == 3
     assert counts["b_basin_shard"] == counts["b_table1_runs_shard"] == counts["b_ga_shard"] == 3
+    assert counts["b_uncertainty_shard"] == 9 and counts["b_uncertainty"] == 3
     for name in SHARDED:
         one = work / f"results/paper_b/datasets/{name}.nc"
         assert filecmp.cmp(one, work / f"results/sharded/paper_b/datasets/{name}.nc",

@@ -504,18 +504,20 @@ use rule b_forces_shard as b_forces with:
         benchmarks("b_forces")
 
 
-rule b_uncertainty:
+rule b_uncertainty_shard:
     input:
         forces=dataset("b", "forces"),
         paper_values=PAPER_VALUES,
     output:
-        dataset("b", "uncertainty_{case}"),
+        shard_file("b", "uncertainty_{case}"),
     log:
-        logs("b_uncertainty_{case}"),
+        logs("b_uncertainty_{case}.{shard}-of-{shards}"),
     benchmark:
-        benchmarks("b_uncertainty_{case}")
+        benchmarks("b_uncertainty_{case}.{shard}-of-{shards}")
     wildcard_constraints:
         case="|".join(B_UNCERTAIN),
+        shard=r"\d+",
+        shards=r"\d+",
     priority: LONGEST_CHAIN
     resources:
         runtime=30,
@@ -536,6 +538,20 @@ rule b_uncertainty:
         "Paper B (beyond the paper): Sobol indices and bands of the case {wildcards.case}"
     script:
         "../scripts/b_uncertainty.py"
+
+
+# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
+use rule b_uncertainty_shard as b_uncertainty with:
+    input:
+        forces=dataset("b", "forces"),
+        paper_values=PAPER_VALUES,
+        shards=shards_of("b", "uncertainty_{case}", B["shards"]),
+    output:
+        dataset("b", "uncertainty_{case}"),
+    log:
+        logs("b_uncertainty_{case}"),
+    benchmark:
+        benchmarks("b_uncertainty_{case}")
 
 
 rule b_pareto:

@@ -132,16 +132,17 @@ def _study_job(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
 
 
 def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *, width: int,
-              study: str) -> None:
+              study: str, seed: int | None = None) -> None:
     """The job of a batch study's script (:func:`_study_job`): a shard computes its rows of
     every batch (:class:`ShardRuns`), the gathering answers every batch from them
-    (:class:`GatheredRuns`).  ``build(runner)`` builds the study's dataset from a runner."""
+    (:class:`GatheredRuns`).  ``build(runner)`` builds the study's dataset from a runner;
+    ``seed`` goes into the provenance."""
     def shard_job(shard, shards):
         runner = ShardRuns(runs, shard, shards, width)
         build(runner)
         return shard_dataset(runner, study)
 
-    _study_job(snakemake, runs, build, shard_job, GatheredRuns, None)
+    _study_job(snakemake, runs, build, shard_job, GatheredRuns, seed)
 
 
 def run_keys(inputs: list) -> list[bytes]:

@@ -104,12 +104,15 @@ def balances_in_closed_form(ds: xr.Dataset, x, *, mass_tolerance=None, eps_offse
     return r < a["r_threshold"]
 
 
-def run_case(setup: Setup, x, case: dict, *, kinematics: str) -> dict[str, np.ndarray]:
+def run_case(setup: Setup, x, case: dict, *, kinematics: str,
+             runs=None) -> dict[str, np.ndarray]:
     """The quantities of :data:`QUANTITIES` at each input point ``x[:, INPUTS]`` for ``case``
     (``beta``, ``mass``, ``eps_bar``, ``speed`` or None for the configured run-up, and its ball
     positions: ``phi0_deg``, or ``ics``, a list of them, when the quantities are means over
-    them), all runs in one batch.  A run that does not balance (or whose force does not decay)
-    by ``t_end`` has no time: NaN, and a mean over ICs with such a run is NaN too."""
+    them), all runs in one batch of ``runs(inputs) -> metrics`` (``setup.runs`` unless given:
+    a shard of them or their gathering, :mod:`rotorvib.pipeline.shards`).  A run that does not
+    balance (or whose force does not decay) by ``t_end`` has no time: NaN, and a mean over ICs
+    with such a run is NaN too."""
     inputs = []
     positions = case.get("ics") or [case["phi0_deg"]]
     for row in np.asarray(x, float):
@@ -120,7 +123,7 @@ def run_case(setup: Setup, x, case: dict, *, kinematics: str) -> dict[str, np.nd
                                 beta=case["beta"], phi0_deg=tuple(phi), kinematics=kinematics,
                                 speed=case["speed"], R=v["R"])
                    for phi in positions]
-    metrics = setup.runs(inputs, progress=False)
+    metrics = (runs or (lambda batch: setup.runs(batch, progress=False)))(inputs)
     metrics = metrics.reshape(len(x), len(positions), -1)
 
     def time_of(time, flag):
@@ -134,16 +137,17 @@ def run_case(setup: Setup, x, case: dict, *, kinematics: str) -> dict[str, np.nd
 
 
 def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinematics: str,
-                        n_base: int, convergence, resamples: int, seed: int) -> xr.Dataset:
+                        n_base: int, convergence, resamples: int, seed: int,
+                        runs=None) -> xr.Dataset:
     """Sobol indices and bands of the quantities of ``case`` (``name``, ``title``, ``beta``,
     ``mass``, ``eps_bar``, ``speed`` or None, ``phi0_deg`` or ``ics``, and ``printed``: the
     paper's values to set against the bands, quantity -> key in the paper values) over
     ``ranges`` (input -> ``[low, high]`` for every input but R) and ``R_band``
     (:func:`calibrated_band`); the nominal run is the case as the paper runs it: R and r(0)
-    of ``setup``, no tolerances."""
+    of ``setup``, no tolerances.  ``runs`` as :func:`run_case`'s."""
     spec = problem({"R": tuple(R_band), **{name: tuple(ranges[name]) for name in INPUTS[1:]}})
     x = sample(spec, n_base, seed)
-    run = partial(run_case, setup, case=case, kinematics=kinematics)
+    run = partial(run_case, setup, case=case, kinematics=kinematics, runs=runs)
     at = {"R": setup.R, "r0": setup.r0}
     nominal = {q: v[0] for q, v in run([[at.get(n, 0.0) for n in INPUTS]]).items()}
     ds = study_dataset(spec, x, run(x), nominal, QUANTITIES, n_bases=convergence,
