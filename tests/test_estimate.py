@@ -45,7 +45,7 @@ def test_the_counts_are_the_runs_the_workflow_makes(run_dir, tmp_path):
     sampled run-ups time to a positive cost, and the report adds them up."""
     work = copy_run(run_dir, tmp_path / "repo")
     folder = estimate.counting_pass(work, ["config/test/config.yaml"], 2, "results/estimate/t")
-    costs = {c.job: c for c in estimate.job_costs(folder)}
+    costs = {c.dataset: c for c in estimate.job_costs(folder)}
     data = work / "results/paper_b/datasets"
 
     def size(name, *variables):

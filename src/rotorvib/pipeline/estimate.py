@@ -117,10 +117,10 @@ HOOK = ("import os\nfrom pathlib import Path\n"
 @dataclass(frozen=True)
 class JobCost:
     """One job's run-ups, those the counter answered (the others ran in the counting pass and
-    are in its measured CPU) and the CPU seconds of one by its timed sample; ``job`` names
-    the dataset it writes."""
+    are in its measured CPU) and the CPU seconds of one by its timed sample; ``dataset``
+    names the job by the dataset it writes."""
 
-    job: str
+    dataset: str
     runs: int
     counted: int
     cpu_per_run: float
@@ -205,10 +205,10 @@ def counting_pass(root: Path, configfiles: list[str], cores: int, results: str) 
 
 def report(costs: list[JobCost], rest: float, cores: int) -> str:
     """The estimate as text: a line per job, the totals."""
-    width = max([len(c.job) for c in costs] + [7])
+    width = max([len(c.dataset) for c in costs] + [7])
     lines = [f"{'dataset':<{width}}  {'run-ups':>10}  {'counted':>10}  {'CPU-s/run-up':>12}  "
              f"{'CPU-s':>10}"]
-    lines += [f"{c.job:<{width}}  {c.runs:>10d}  {c.counted:>10d}  {c.cpu_per_run:>12.2e}  "
+    lines += [f"{c.dataset:<{width}}  {c.runs:>10d}  {c.counted:>10d}  {c.cpu_per_run:>12.2e}  "
               f"{c.cpu:>10.1f}" for c in costs]
     runs, cpu = sum(c.runs for c in costs), sum(c.cpu for c in costs)
     total = cpu + rest

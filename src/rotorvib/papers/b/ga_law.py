@@ -99,11 +99,11 @@ def ga_law_dataset(setup: Setup, ga: xr.Dataset, ics: dict, beta_bounds, mass_bo
         if envelopes is None:
             envelopes, times_of = (np.full(shape + times.shape, np.nan) for _ in range(2))
         envelopes[idx], times_of[idx] = env, times
-        sigma, amp, res = fit_decay(times, env, t0)
-        res_ = tr.result
-        for key, value in (("balance_time", np.nan if res_.censored else res_.balance_time),
-                           ("sigma_fit", sigma), ("amplitude", amp), ("residual", res),
-                           ("force_peak", res_.force_max), ("t_peak", res_.force_max_time)):
+        sigma, amp, residual = fit_decay(times, env, t0)
+        result = tr.result
+        for key, value in (("balance_time", np.nan if result.censored else result.balance_time),
+                           ("sigma_fit", sigma), ("amplitude", amp), ("residual", residual),
+                           ("force_peak", result.force_max), ("t_peak", result.force_max_time)):
             out[key][idx] = value
     eps_bar = ga.eps_bar.values[None, :, None, None]
     sigma_eig = slow_decay_rate(mass / setup.M, eps_bar, setup.zeta, beta, setup.omega / wn,
