@@ -120,3 +120,24 @@ def test_a_band_holds_no_capped_value_and_an_output_without_values_has_no_index(
     assert f"the {valued.size} of {y.size} input points where it has a value" in text
     assert "no Sobol index (it needs a value at every point)" in text
     assert RESOLVED_HALF_WIDTH == ds.attrs["sobol_resolved_half_width"] == 0.1
+
+
+def test_an_output_no_point_of_which_has_a_value_decides_nothing():
+    """Every run censored (found by the configuration fuzzer, tests/schema_fuzz.py: paper B's
+    Fig 7 case at beta = 0.001 never balances): no band, a NaN margin with a NaN uncertainty,
+    which the comparison counts UNDETERMINED, and a statement that says why."""
+    from rotorvib.comparison import Margin
+    from rotorvib.methods.sensitivity import band_statement, percentile_spread, study_dataset
+
+    spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
+    x = sample(spec, 16, seed=1)
+    ds = study_dataset(spec, x, {"t": np.full(len(x), np.nan)}, {"t": np.nan}, {"t": "s"},
+                       n_bases=[16], resamples=20, seed=1)
+    assert np.all(np.isnan(percentile_spread(ds.y.values[0], [5.0, 95.0], resamples=20,
+                                             seed=1)))
+    (margin, uncertainty), text = band_statement(ds, "t", 9.04)
+    assert np.isnan(margin) and np.isnan(uncertainty)
+    assert f"none of the {len(x)} input points has a value" in text
+    assert Margin(margin, uncertainty, "s", "bootstrap").holds() is None
+    with pytest.raises(ValueError, match="uncertainty must be >= 0"):
+        Margin(1.0, np.nan, "s", "bootstrap")

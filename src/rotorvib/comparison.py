@@ -56,8 +56,9 @@ class Margin:
     the step of a grid, an integration tolerance, a bootstrap interval; 0 for exact arithmetic
     or counts).  The claim holds when ``value > uncertainty``, fails when ``value <
     -uncertainty`` and is undecided in between; with ``uncertainty == 0`` a margin of exactly
-    0 holds (an inclusive bound, e.g. no grid point differs).  A NaN margin decides nothing;
-    an infinite one decides by its sign."""
+    0 holds (an inclusive bound, e.g. no grid point differs).  A NaN margin decides nothing
+    (its uncertainty may be NaN too: a quantity with no value, e.g. every run censored); an
+    infinite one decides by its sign."""
 
     value: float
     uncertainty: float
@@ -65,7 +66,7 @@ class Margin:
     basis: str
 
     def __post_init__(self):
-        if not self.uncertainty >= 0:
+        if not (self.uncertainty >= 0 or math.isnan(self.value) and math.isnan(self.uncertainty)):
             raise ValueError(f"a margin's uncertainty must be >= 0, not {self.uncertainty!r}")
 
     def holds(self) -> bool | None:

@@ -135,9 +135,12 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
 def percentile_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
     """Standard deviation of each of ``percentiles`` of the sample ``y`` (its values; NaN
     marks a point without one) over ``resamples`` bootstrap resamples: how well a finite sample
-    pins a band's edges, or its median."""
+    pins a band's edges, or its median; NaN for each where no point has a value (every run
+    censored)."""
     y = np.asarray(y, float)
     y = y[np.isfinite(y)]
+    if y.size == 0:
+        return np.full(len(percentiles), np.nan)
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, y.size, (resamples, y.size))
     return np.percentile(y[draws], percentiles, axis=1).std(axis=1)
@@ -167,6 +170,10 @@ def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[tuple[f
     st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
     p = ds.percentile.values
     valued, points = int(ds.n_valued[q]), ds.sizes["sample"]
+    if valued == 0:
+        return band_margin(ds, quantity, value), (
+            f"{value:.4g} {units}, but none of the {points} input points has a value (no run "
+            "balances by t_end): there is no band to compare it with")
     if valued < points:
         driver = "no Sobol index (it needs a value at every point)"
     elif np.all(np.isnan(st)):

@@ -21,10 +21,11 @@ def samples(t_end: float, sample_dt: float) -> int:
 
 
 def samples_problem(t_end: float, sample_dt: float) -> str | None:
-    """Why a run of ``t_end`` sampled every ``sample_dt`` has too many samples, or None."""
-    n = samples(t_end, sample_dt)
-    if n > MAX_SAMPLES:
-        return f"{n:.3g} samples, at most {MAX_SAMPLES:.0e}"
+    """Why a run of ``t_end`` sampled every ``sample_dt`` has too many samples, or None (the
+    ratio is compared before it is counted: a subnormal ``sample_dt`` makes it infinite)."""
+    ratio = t_end / sample_dt
+    if not ratio < MAX_SAMPLES:
+        return f"{ratio + 1:.3g} samples, at most {MAX_SAMPLES:.0e}"
     return None
 
 

@@ -1,0 +1,37 @@
+"""Every number of the reduced configuration moved, one at a time, to the values of the fuzzer
+(tests/schema_fuzz.py: the schema's bounds, just inside an open bound, zero, a sign change,
+three orders of magnitude): the checks run before any job either accept the configuration or
+refuse it with messages that each name a config key, and never crash."""
+
+import pytest
+
+import schema_fuzz
+
+BASE = schema_fuzz.reduced_config()
+MUTATIONS = schema_fuzz.mutations(BASE)
+
+
+def test_the_fuzzer_moves_every_number_of_the_configuration():
+    paths = {path for path, _ in MUTATIONS}
+    assert paths == set(schema_fuzz.numbers(BASE)) and len(paths) > 250
+    # an open bound is approached from inside: the next float above paper_b.machine.M's 0
+    assert 5e-324 in {v for p, v in MUTATIONS if p == ("paper_b", "machine", "M")}
+
+
+def test_every_mutation_is_accepted_or_refused_naming_its_keys():
+    verdicts = [schema_fuzz.verdict(schema_fuzz.mutate(BASE, path, value))
+                for path, value in MUTATIONS]
+    refused = [v for v in verdicts if v is not None]
+    unnamed = [line for message in refused for line in message.splitlines()[1:]
+               if not line.strip().startswith("config key '")]
+    assert unnamed == []
+    # both outcomes occur, and the checks beyond the schema refuse some (e.g. the run budget)
+    assert 0.3 < len(refused) / len(verdicts) < 0.7
+    assert any("radians" in message for message in refused)
+
+
+@pytest.mark.parametrize("sample_dt", [5e-324, 1e-300])
+def test_a_vanishing_sample_step_is_refused_not_a_crash(sample_dt):
+    """Found by the fuzzer: the sample count of a subnormal step overflowed an integer."""
+    mutated = schema_fuzz.mutate(BASE, ("paper_b", "balance", "sample_dt"), sample_dt)
+    assert "'paper_b.balance.sample_dt'" in schema_fuzz.verdict(mutated)
