@@ -63,13 +63,18 @@ def broadband_front(rotor: Rotor, bounds: dict, w, **nsga) -> ParetoFront:
                         lower, upper, **nsga)
 
 
+class NoDesignAtMass(ValueError):
+    """A Pareto front without a design as light as asked: its search stopped before reaching
+    that mass (a longer search, more generations or a larger population, reaches it)."""
+
+
 def pick_at_mass(front: ParetoFront, mass: float) -> np.ndarray:
     """The front's design with the lowest band peak among those adding at most ``mass``;
-    ``ValueError`` if none does."""
+    :class:`NoDesignAtMass` if none does."""
     fits = front.f[:, 1] <= mass * (1 + 1e-12)
     if not fits.any():
-        raise ValueError(f"no design of the front adds at most {mass:g} kg (lightest "
-                         f"{front.f[:, 1].min():g} kg)")
+        raise NoDesignAtMass(f"no design of the front adds at most {mass:g} kg (lightest "
+                             f"{front.f[:, 1].min():g} kg)")
     return front.x[fits][np.argmin(front.f[fits, 0])]
 
 
