@@ -114,6 +114,10 @@ CASES = [
     ("paper_a.rk.rtol", "1e-9", None), ("paper_a.rk.method", "rk4", None), ("paper_a.error_study.deltas", [0.01, 0.01], None),
     ("paper_a.fig7.beta.n", 1.0e7, None), ("paper_a.fig5_6.betas", [-1.0], "paper_a.fig5_6.betas.0"),
     ("paper_a.slow_flow.omega", RANGE_DOWN, None),
+    # found by the fuzzer (tests/schema_fuzz.py): subnormal numbers pass "> 0" and underflow
+    # to 0 inside a job
+    ("paper_c.mass_ratio_family.mu", [5e-324], "paper_c.mass_ratio_family.mu.0"),
+    ("paper_c.table2.k2", 5e-324, None), ("paper_b.balance.sample_dt", 1e-310, None),
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),

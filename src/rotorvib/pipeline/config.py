@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import copy
 import math
+import sys
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -153,14 +154,24 @@ def _is_number(text: str) -> bool:
     return True
 
 
+#: The least magnitude of a normal double: a nonzero number below it (subnormal, e.g. 5e-324)
+#: has lost precision, and a product of it underflows to 0 (found by tests/schema_fuzz.py: a
+#: mass ratio of 5e-324 passed "> 0" and made an absorber of mass 0 inside a job).
+SMALLEST_NORMAL = sys.float_info.min
+
+
 def _non_finite(config, path=()) -> list[str]:
-    """Every NaN or infinite number in the configuration (JSON Schema bounds never reject NaN)."""
+    """Every NaN, infinite or subnormal number in the configuration (JSON Schema bounds never
+    reject NaN, and a subnormal passes any bound "> 0")."""
     if isinstance(config, dict):
         return [p for k, v in config.items() for p in _non_finite(v, path + (k,))]
     if isinstance(config, list):
         return [p for i, v in enumerate(config) for p in _non_finite(v, path + (str(i),))]
     if isinstance(config, float) and not math.isfinite(config):
         return [f"config key '{_key(path)}': {config!r} is not allowed; must be a finite number"]
+    if isinstance(config, float) and 0 < abs(config) < SMALLEST_NORMAL:
+        return [f"config key '{_key(path)}': {config!r} is not allowed; must be 0 or at least "
+                f"{SMALLEST_NORMAL:.4g} in magnitude (a subnormal number has lost precision)"]
     return []
 
 
