@@ -245,6 +245,11 @@ def test_exponent_notation_is_a_number(tmp_path):
     ("paper_b:\n  table1:\n    speeds: [200.0, 1.0e+6]\n", "'paper_b.table1.speeds': with "
      "paper_b.balance.t_end = 20.0, the run spans 2e+07 radians"),
     ("paper_b:\n  ga:\n    beta: [0.1, 1.0e+5]\n", "'paper_b.ga.beta': with"),
+    ("paper_b:\n  pareto:\n    speed: 1.0e+6\n", "'paper_b.pareto.speed': with"),
+    ("paper_b:\n  balance_studies:\n    fast:\n      where: x\n      axis: speed\n"
+     "      range: {min: 100.0, "
+     "max: 1.0e+6, n: 3}\n      fixed: {beta: 0.3, mass: 0.01, eps_bar: 0.012}\n",
+     "'paper_b.balance_studies.fast': with"),
 ])
 def test_snakemake_stops_before_any_job(tmp_path, text, named):
     bad = tmp_path / "bad.yaml"

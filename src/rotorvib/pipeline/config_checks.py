@@ -63,8 +63,8 @@ def existence_problems(b: dict) -> list[str]:
 def run_budget_problems(b: dict) -> list[str]:
     """Runs the engine would refuse (:mod:`rotorvib.models.balancer.limits`), named by their
     config keys before any job: more samples than it keeps, or more radians of the fastest
-    rate (the disk speed, the natural frequency sqrt(k/M), the support's damping rate
-    2 zeta sqrt(k/M) or the balls' drag rate beta sqrt(k/M)) than it integrates."""
+    rate (every disk speed a study asks for, the natural frequency sqrt(k/M), the support's
+    damping rate 2 zeta sqrt(k/M) or the balls' drag rate beta sqrt(k/M)) than it integrates."""
     balance, machine = b["balance"], b["machine"]
     t_end = balance["t_end"]
     problems = []
@@ -75,10 +75,16 @@ def run_budget_problems(b: dict) -> list[str]:
     rates = {"paper_b.speed.omega": b["speed"]["omega"],
              "paper_b.table1.speeds": max(b["table1"]["speeds"]),
              "paper_b.table2.speed": b["table2"]["speed"],
+             "paper_b.pareto.speed": b["pareto"]["speed"],
              "paper_b.machine.k": omega_n,
              "paper_b.machine.zeta": 2 * machine["zeta"] * omega_n,
              "paper_b.ga.beta": max(b["ga"]["beta"]) * omega_n,
              "paper_b.table1.beta": b["table1"]["beta"] * omega_n}
+    for name, study in b["balance_studies"].items():
+        speeds = [study["range"]["max"]] if study["axis"] == "speed" else []
+        speeds += list(np.atleast_1d({**study["fixed"], **study.get("each", {})}.get("speed", [])))
+        if speeds:
+            rates[f"paper_b.balance_studies.{name}"] = max(speeds)
     for key, rate in rates.items():
         if problem := radians_problem(float(rate), t_end):
             problems.append(f"config key '{key}': with paper_b.balance.t_end = {t_end!r}, "
