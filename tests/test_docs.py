@@ -14,15 +14,29 @@ from rotorvib.pipeline.fingerprint import import_closure
 DOCS = ROOT / "docs"
 
 
-def test_the_documentation_builds_with_warnings_as_errors(tmp_path):
+@pytest.fixture(scope="module")
+def built(tmp_path_factory) -> tuple[Path, subprocess.CompletedProcess]:
+    """The site built once for this file's tests, with warnings as errors (``--keep-going``:
+    a warning fails the build test, and the site is still written for the others)."""
+    out = tmp_path_factory.mktemp("docs")
+    build = subprocess.run([str(Path(sys.executable).parent / "sphinx-build"), "-W",
+                            "--keep-going", "-q", "-b", "html", str(DOCS), str(out)],
+                           capture_output=True, text=True, timeout=600)
+    return out, build
+
+
+@pytest.fixture(scope="module")
+def site(built) -> Path:
+    return built[0]
+
+
+def test_the_documentation_builds_with_warnings_as_errors(built):
     """A broken cross-reference, an unknown page in a toctree or a docstring that is not valid
     reStructuredText is an error."""
-    build = subprocess.run([str(Path(sys.executable).parent / "sphinx-build"), "-W",
-                            "--keep-going", "-q", "-b", "html", str(DOCS), str(tmp_path)],
-                           capture_output=True, text=True, timeout=600)
+    site, build = built
     assert build.returncode == 0, build.stdout + build.stderr
-    assert "paper_c.rotor.M" in (tmp_path / "configuration.html").read_text()
-    assert "rotorvib.models.balancer.simulate.run_batch" in (tmp_path / "api.html").read_text()
+    assert "paper_c.rotor.M" in (site / "configuration.html").read_text()
+    assert "rotorvib.models.balancer.simulate.run_batch" in (site / "api.html").read_text()
 
 
 def _python_blocks():
@@ -81,14 +95,6 @@ def test_following_fig8_names_the_files_and_modules_a_reader_crosses():
     assert listed("the figure") == loaded(str(ROOT / "workflow/scripts/figures.py"),
                                           "rotorvib.papers.b.figures")
     assert '"fig8": figure("balance_against", {"study": "balance_beta"}' in walk
-
-
-@pytest.fixture(scope="module")
-def site(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("docs")
-    subprocess.run([str(Path(sys.executable).parent / "sphinx-build"), "-q", "-b", "html",
-                    str(DOCS), str(out)], check=True, capture_output=True, timeout=600)
-    return out
 
 
 def test_every_page_fits_the_window_and_every_link_leads_somewhere(site, browser):

@@ -137,3 +137,18 @@ def test_no_boundary_to_start_from_below_the_least_beta():
     fixed = {k: v for k, v in BASE.items() if k != "beta"}
     with pytest.raises(ValueError, match="never turns stable below omega_bar = 20.0"):
         onset("beta", fixed, 5e-4, 20.0, 2, 20000)
+
+
+def test_where_the_linearisation_does_not_exist_the_tracked_value_is_nan():
+    """Balls 1e17 times the disk's mass (mu rounds to 1/2, the mass matrix is singular) or an
+    overflowing ratio: NaN, which the corrector treats as a failed step, never an exception that
+    stops the job (found by the configuration fuzzer: Fig 3's beta = 0.1 sent a corrector step of
+    the m_bar plane there). A point of the plane keeps its finite value."""
+    from rotorvib.papers.b.boundaries import TrackedEigenvalue
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        g = TrackedEigenvalue("m_bar", {"eps_bar": 0.012, "beta": 0.1, "zeta": 0.01}, 2, 0j)
+        with pytest.raises(np.linalg.LinAlgError):
+            g.eigenvalues(np.array([17.0, 1.0]))
+        assert np.isnan(g(np.array([17.0, 1.0]))) and np.isnan(g(np.array([300.0, 1.0])))
+        assert np.isfinite(g(np.array([0.0, 1.0])))

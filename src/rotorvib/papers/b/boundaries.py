@@ -19,6 +19,8 @@ to the critical speed ``1 / sqrt(1 + n m_bar)`` of paper B's scale, from above.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 from scipy.optimize import brentq
@@ -68,7 +70,14 @@ class TrackedEigenvalue:
         return leading(self.split(z)[1])
 
     def __call__(self, z) -> float:
-        return float(self.split(z)[0].real)
+        """``Re lambda`` at ``z``; NaN where the linearisation does not exist: the mass matrix
+        is singular (balls so heavy, p ~ 1e17, that mu rounds to 1/2) or not finite -- where a
+        corrector step far outside the plane can land (found by the configuration fuzzer), and
+        which :func:`rotorvib.methods.continuation.trace` treats as a failed step."""
+        try:
+            return float(self.split(z)[0].real)
+        except np.linalg.LinAlgError:
+            return math.nan
 
     def accept(self, z) -> None:
         """Follow the eigenvalue to the accepted point ``z`` and record it."""
