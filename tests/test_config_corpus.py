@@ -118,6 +118,9 @@ CASES = [
     # to 0 inside a job
     ("paper_c.mass_ratio_family.mu", [5e-324], "paper_c.mass_ratio_family.mu.0"),
     ("paper_c.table2.k2", 5e-324, None), ("paper_b.balance.sample_dt", 1e-310, None),
+    # found by the fuzzer: a Fig 6 claim about a curve the family does not draw
+    ("paper_c.mass_ratio_family.mu", [0.2, 0.06, 0.85, 1.0], None),
+    ("paper_c.claims.fig6_mu.others", [0.2, 0.5], "paper_c.mass_ratio_family.mu"),
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),

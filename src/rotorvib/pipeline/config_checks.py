@@ -135,12 +135,24 @@ def ga_law_problems(b: dict) -> list[str]:
     return found
 
 
+def fig6_problems(c: dict) -> list[str]:
+    """Paper C's Fig 6 claims compare curves of the mass-ratio family: each ratio they name
+    (``claims.fig6_mu``) must be one of ``mass_ratio_family.mu``."""
+    family = np.asarray(c["mass_ratio_family"]["mu"], float)
+    roles = c["claims"]["fig6_mu"]
+    return [f"config key 'paper_c.mass_ratio_family.mu': must contain {m:g}, the mass ratio of "
+            f"paper_c.claims.fig6_mu.{role} (Fig 6's claims compare it)"
+            for role, values in roles.items() for m in np.atleast_1d(values)
+            if not np.isclose(family, m).any()]
+
+
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
     run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
     below the existence bound, a run the engine would refuse, a stability-boundary plane that
-    cannot start, a GA-optimum study with nothing to fit."""
+    cannot start, a GA-optimum study with nothing to fit, a Fig 6 claim about a curve the
+    mass-ratio family does not draw."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -156,4 +168,4 @@ def problems(config: dict) -> list[str]:
             found.append(f"config key '{key}.spread_seeds': must not contain {key}.seed "
                          f"({ga['seed']}), whose result it would count twice")
     return (found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
-            + ga_law_problems(b))
+            + ga_law_problems(b) + fig6_problems(config["paper_c"]))

@@ -94,9 +94,14 @@ def ga_rows(ga: xr.Dataset, omega_n: float, J: float, paper: dict) -> list[Repro
 
 
 def mass_ratio_rows(mr: xr.Dataset, claims: dict, close: float) -> list[Reproduced]:
-    """Fig 6's claims on one construction of the mass-ratio family; ``close`` is the
-    comparison's standard for "close" (a relative difference)."""
+    """Fig 6's claims on one construction of the mass-ratio family; ``claims["fig6_mu"]``
+    names its curves' mass ratios by their role (``best``, the ratio the paper finds best;
+    ``equal``, equal masses; ``others``), which the configuration's check puts in the family;
+    ``close`` is the comparison's standard for "close" (a relative difference)."""
     mu = mr.mu.values
+    roles = claims["fig6_mu"]
+    best, equal = roles["best"], roles["equal"]
+    curves = (*roles["others"], best, equal)
 
     def D_mu(m, at):
         i = int(np.argmin(np.abs(mu - m)))
@@ -104,30 +109,30 @@ def mass_ratio_rows(mr: xr.Dataset, claims: dict, close: float) -> list[Reproduc
             raise ValueError(f"paper_c.mass_ratio_family.mu must contain {m} for the Fig 6 claims")
         return float(np.interp(at, mr.w.values, mr.D.values[i]))
 
-    at1 = {m: D_mu(m, 1.0) for m in (0.2, 0.6, 0.85, 1.0)}
+    at1 = {m: D_mu(m, 1.0) for m in curves}
     w_low = claims["fig6_w_low"]
-    at_low = {m: D_mu(m, w_low) for m in (0.85, 1.0)}
-    gap = abs(at1[1.0] - at1[0.85]) / at1[0.85]
+    at_low = {m: D_mu(m, w_low) for m in (best, equal)}
+    gap = abs(at1[equal] - at1[best]) / at1[best]
     at_all = np.array([D_mu(m, 1.0) for m in mu])
-    order = np.argsort(np.abs(mu - 0.85))
+    order = np.argsort(np.abs(mu - best))
     rise = np.diff(at_all[order]) / at_all[order][:-1]
     return [
         _claim("fig6_away_from_opt_raises", closed_form(float(rise.min())),
-               "D(w = 1) ordered by distance of mu from 0.85: "
+               f"D(w = 1) ordered by distance of mu from {best}: "
                + ", ".join(f"{at_all[k]:.3g} (mu = {mu[k]:g})" for k in order)),
         _claim("fig6_085_best",
-               closed_form((min(at1[0.2], at1[0.6]) - at1[0.85]) / at1[0.85]),
+               closed_form((min(at1[m] for m in roles["others"]) - at1[best]) / at1[best]),
              "D(w = 1) = "
-             + ", ".join(f"{at1[m]:.3g} (mu = {m})" for m in (0.2, 0.6, 0.85, 1.0))
-             + ("; mu = 1 is lower still" if at1[1.0] < at1[0.85] else "")),
+             + ", ".join(f"{at1[m]:.3g} (mu = {m})" for m in curves)
+             + (f"; mu = {equal:g} is lower still" if at1[equal] < at1[best] else "")),
         _claim("fig6_mu1_close", closed_form(close - gap),
              f"D(w = 1) differs by {100 * gap:.1f} % between "
-             f"mu = 1 and mu = 0.85 (close means within {close:.0%}, the comparison's "
+             f"mu = {equal:g} and mu = {best} (close means within {close:.0%}, the comparison's "
              "standard)"),
         _claim("fig6_equal_masses_w09",
-               closed_form((at_low[0.85] - at_low[1.0]) / at_low[0.85]),
-             f"D(w = {w_low}) = {at_low[1.0]:.3g} "
-             f"(mu = 1) vs {at_low[0.85]:.3g} (mu = 0.85)"),
+               closed_form((at_low[best] - at_low[equal]) / at_low[best]),
+             f"D(w = {w_low}) = {at_low[equal]:.3g} "
+             f"(mu = {equal:g}) vs {at_low[best]:.3g} (mu = {best})"),
     ]
 
 
