@@ -148,3 +148,17 @@ def test_a_decided_claim_needs_a_margin_and_a_margin_a_nonnegative_uncertainty()
     # undecidable for want of material: no margin, and UNDETERMINED
     row, = build_table(values, [Reproduced.claim("B", "claim", None, "ref. [8] not given")])
     assert row["verdict"] == "UNDETERMINED" and row["margin"] is None
+
+
+def test_an_uncertainty_claim_no_case_could_test_is_undetermined_saying_why():
+    """Found by the configuration fuzzer: with Table 2's speed moved, the Table 1 case runs
+    where the paper prints no value and its claim row had no reproduction (the comparison
+    stopped); it is now UNDETERMINED, and a tested claim is left alone."""
+    from rotorvib.papers.b.uncertainty import untested_rows
+
+    paper = {"table1_mean_time_220_within_uncertainty": None,
+             "fig7_balance_time_within_uncertainty": None, "table1_mean_time_220": 3.98}
+    rows = untested_rows(paper, {"fig7_balance_time_within_uncertainty"})
+    assert [r.quantity for r in rows] == ["table1_mean_time_220_within_uncertainty"]
+    assert claim_verdict(rows[0].holds) == "UNDETERMINED"
+    assert "not tested under this configuration" in rows[0].explanation

@@ -1,4 +1,5 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
+from rotorvib.comparison import paper_values_of
 from rotorvib.pipeline.config_checks import boundary_base
 
 B_SETUP = {
@@ -40,7 +41,13 @@ B_UNCERTAIN = {
         "eps_bar": B["table1"]["eps_bar"],
         "ics": list(B["initial_conditions"].values()),
         "speed": _T2["speed"],
-        "printed": {"balance_time": f"table1_mean_time_{_T2['speed']:g}"},
+        # set against the paper's Table 1 mean where its claim row is at this speed (found
+        # by the configuration fuzzer: at another Table 2 speed there is none to compare with)
+        "printed": {
+            "balance_time": key
+            for key in [f"table1_mean_time_{_T2['speed']:g}"]
+            if f"{key}_within_uncertainty" in paper_values_of(PAPER_VALUES, "B")
+        },
     },
 }
 B_RUNS = {
