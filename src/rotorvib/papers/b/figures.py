@@ -264,7 +264,8 @@ def basin_distribution(basin, paper):
             finite = times[np.isfinite(times)]
             share = np.arange(1, finite.size + 1) / times.size
             ax.step(finite, share, where="post", color=color, ls=ls,
-                    label=f"{case}, {kinematics} (balanced by t_end: {share[-1]:.0%})")
+                    label=f"{case}, {kinematics} (balanced by t_end: "
+                          f"{finite.size / times.size:.0%})")     # 0 % too: none balanced
             for k, (ic, t) in enumerate(zip(labels(b, "ic"), b.ic_balance_time.values)):
                 at = faster_share(times, t)
                 ax.plot(t, at, "o", color=color, mfc="white" if ls == "--" else color, ms=5)

@@ -225,7 +225,7 @@ def trend_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[R
             holds[str(kin)] = Margin(margin, 2 * float(spread), "share of variance",
                                      f"bootstrap over {sel.size} runs")
         rows.append(Reproduced.claim(
-            "B", quantity, holds,
+            "B", quantity, holds or None,       # no run balanced: nothing to decide
             "shares of the balance times' variance that each factor of the law explains alone "
             "(sigma: the slowest decay rate; force: the passage's peak force; t_peak: its time; "
             "law: all three): " + "; ".join(shares_text)))

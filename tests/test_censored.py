@@ -1,0 +1,60 @@
+"""A configuration under which no run balances (found by the configuration fuzzer,
+tests/schema_fuzz.py: paper B's support damping zeta = 0.001 in the reduced configuration) runs
+through to the comparison and says so: each place that stopped the workflow, on synthetic data."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from rotorvib.comparison import claim_verdict
+from rotorvib.papers.b.claims import optimum_lead
+
+
+def test_fig16s_optimum_loses_when_only_its_force_never_decays():
+    """Decay times in s, the optimum last; NaN: no decay by t_end (later than any that does)."""
+    assert optimum_lead([200.0, 120.0, 90.0], [8.1, 5.3, 4.6]) == (
+        pytest.approx(5.3 / 4.6 - 1), 4.6)
+    assert optimum_lead([200.0, 120.0, 90.0], [np.nan, 5.3, 4.6])[0] == pytest.approx(
+        5.3 / 4.6 - 1)                                   # a slower row never decays: still best
+    assert optimum_lead([200.0, 120.0, 90.0], [8.1, 5.3, np.nan]) == (-1.0, np.inf)
+    lead, last = optimum_lead([200.0, 120.0, 90.0], [np.nan, np.nan, np.nan])
+    assert np.isnan(lead) and last == np.inf            # nothing decays: nothing decided
+
+
+def _no_runs():
+    empty = np.zeros(0)
+    return xr.Dataset(
+        {name: ("run", empty) for name in ("balance_time", "predicted", "sigma", "t_peak",
+                                           "m_bar", "beta", "relative_error")},
+        coords={"source": ("run", np.array([], dtype=object)),
+                "kinematics_name": ("run", np.array([], dtype=object))})
+
+
+def test_the_laws_trend_rows_over_no_balanced_run_decide_nothing():
+    from rotorvib.papers.b.law import TRENDS, trend_rows
+
+    rows = trend_rows(_no_runs())
+    assert [r.quantity for r in rows] == list(TRENDS)
+    assert all(claim_verdict(r.holds) == "UNDETERMINED" for r in rows)
+
+
+def test_the_law_figure_over_no_balanced_run_says_so():
+    from rotorvib.papers.b.beyond_figures import balance_law
+
+    fig = balance_law(_no_runs(), {})
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert texts and all("no run balanced by t_end" in t for t in texts)
+
+
+def test_the_basin_distribution_of_a_case_that_never_balances_shows_zero():
+    from rotorvib.papers.b.figures import basin_distribution
+
+    phi = np.array([0.0, 180.0])
+    basin = xr.Dataset(
+        {"balance_time": (("kinematics", "case", "phi1", "phi2"), np.full((1, 1, 2, 2), np.nan)),
+         "ic_balance_time": (("kinematics", "case", "ic"), np.full((1, 1, 1), np.nan)),
+         "case_beta": ("case", [0.2]), "case_mass": ("case", [0.01])},
+        coords={"kinematics_name": ("kinematics", ["printed"]), "phi1": phi, "phi2": phi,
+                "ic_name": ("ic", ["IC1"])}, attrs={"eps_bar": 0.012})
+    fig = basin_distribution(basin, {})
+    assert "(balanced by t_end: 0%)" in fig.axes[0].get_legend_handles_labels()[1][0]
