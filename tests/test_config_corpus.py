@@ -121,6 +121,7 @@ CASES = [
     # found by the fuzzer: a Fig 6 claim about a curve the family does not draw
     ("paper_c.mass_ratio_family.mu", [0.2, 0.06, 0.85, 1.0], None),
     ("paper_c.claims.fig6_mu.others", [0.2, 0.5], "paper_c.mass_ratio_family.mu"),
+    ("paper_c.distance_study.offsets", [-0.5, 0.0], None),      # through the disk centre
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),

@@ -146,13 +146,25 @@ def fig6_problems(c: dict) -> list[str]:
             if not np.isclose(family, m).any()]
 
 
+def distance_problems(c: dict) -> list[str]:
+    """The distance study moves both absorber sets of Table 2 by each offset: none may move a
+    set to the disk centre or through it."""
+    nearest = min(c["table2"]["d1"], c["table2"]["d2"])
+    lowest = min(c["distance_study"]["offsets"])
+    if nearest + lowest > 0:
+        return []
+    return [f"config key 'paper_c.distance_study.offsets': {lowest:g} m moves the set at "
+            f"{nearest:g} m (paper_c.table2) to or through the disk centre; each offset must "
+            f"exceed {-nearest:g} m"]
+
+
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
     run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
     below the existence bound, a run the engine would refuse, a stability-boundary plane that
     cannot start, a GA-optimum study with nothing to fit, a Fig 6 claim about a curve the
-    mass-ratio family does not draw."""
+    mass-ratio family does not draw, a distance offset through the disk centre."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -168,4 +180,5 @@ def problems(config: dict) -> list[str]:
             found.append(f"config key '{key}.spread_seeds': must not contain {key}.seed "
                          f"({ga['seed']}), whose result it would count twice")
     return (found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
-            + ga_law_problems(b) + fig6_problems(config["paper_c"]))
+            + ga_law_problems(b) + fig6_problems(config["paper_c"])
+            + distance_problems(config["paper_c"]))
