@@ -58,3 +58,10 @@ def test_the_basin_distribution_of_a_case_that_never_balances_shows_zero():
                 "ic_name": ("ic", ["IC1"])}, attrs={"eps_bar": 0.012})
     fig = basin_distribution(basin, {})
     assert "(balanced by t_end: 0%)" in fig.axes[0].get_legend_handles_labels()[1][0]
+
+
+def test_a_run_up_shorter_than_the_sample_step_is_over_by_the_first_sample():
+    from rotorvib.papers.b.claims import runup_end
+
+    assert runup_end([50.0, 50.0, 50.0, 0.0, 0.0]) == 3
+    assert runup_end([0.0, 0.0, 0.0]) == 1        # paper_b.speed.t_ramp below sample_dt

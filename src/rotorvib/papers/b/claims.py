@@ -271,6 +271,14 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
     return rows
 
 
+def runup_end(alpha) -> int:
+    """The index of the first sample after which the angular acceleration ``alpha`` (samples
+    from t = 0) stays zero; a run-up shorter than the sample step is over by the first sample
+    after t = 0 (found by the fuzzer: paper_b.speed.t_ramp = 0.0005 s had no such sample)."""
+    accelerating = np.flatnonzero(np.asarray(alpha) != 0.0)
+    return int(accelerating[-1]) + 1 if accelerating.size else min(1, len(alpha) - 1)
+
+
 def optimum_lead(forces, decay_times) -> tuple[float, float]:
     """How far the last row (the optimum) leads every other in peak force and force decay time,
     ``min(F_i / F_opt, T_i / T_opt) - 1`` over the others, and its decay time.  A force that
@@ -303,7 +311,7 @@ def response_rows(tr: xr.Dataset, kin: str, r_threshold: float,
                  f"{float(f7.envelope_time):.2f} s (threshold definition "
                  f"{float(f7.balance_time):.2f} s); the paper does not describe its envelope "
                  "fit")]
-    done = int(np.flatnonzero(t.alpha.values != 0.0)[-1]) + 1
+    done = runup_end(t.alpha.values)
     rows.append(_row("runup_time", float(t.t[done]),
                      f"first sample after which eq. (37)'s acceleration stays zero; the speed "
                      f"there is {float(t.omega[done]):.2f} rad/s"))
