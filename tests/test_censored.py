@@ -1,6 +1,7 @@
-"""A configuration under which no run balances (found by the configuration fuzzer,
-tests/schema_fuzz.py: paper B's support damping zeta = 0.001 in the reduced configuration) runs
-through to the comparison and says so: each place that stopped the workflow, on synthetic data."""
+"""Configurations at the edges that stopped the workflow, found by the configuration fuzzer
+(tests/schema_fuzz.py) and now run through to the comparison, saying what they could not
+decide; each on synthetic data. Most are a configuration under which no run balances (paper B's
+support damping zeta = 0.001 in the reduced configuration)."""
 
 import numpy as np
 import pytest
@@ -65,3 +66,20 @@ def test_a_run_up_shorter_than_the_sample_step_is_over_by_the_first_sample():
 
     assert runup_end([50.0, 50.0, 50.0, 0.0, 0.0]) == 3
     assert runup_end([0.0, 0.0, 0.0]) == 1        # paper_b.speed.t_ramp below sample_dt
+
+
+def test_table1_keeps_the_papers_speeds_whatever_the_configuration_runs():
+    from rotorvib.comparison import Reproduced
+    from rotorvib.papers.b.claims import table1_at_paper_speeds
+
+    paper = {"table1_m_opt_200": 0.006, "table1_mean_time_200": 4.7,
+             "table1_m_opt_210": 0.006, "table1_mean_time_210": 4.4,
+             "table1_mean_time_220_within_uncertainty": None}
+    made = [Reproduced.of("B", f"table1_{q}_{s}", 1.0, "run") for s in (20, 210)
+            for q in ("m_opt", "mean_time")]
+    rows = {r.quantity: r for r in table1_at_paper_speeds(made, paper)}
+    assert set(rows) == {"table1_m_opt_200", "table1_mean_time_200", "table1_m_opt_210",
+                         "table1_mean_time_210"}                 # none at 20 rad/s
+    assert np.isnan(rows["table1_m_opt_200"].reproduced)
+    assert rows["table1_m_opt_210"].reproduced == 1.0
+    assert "does not run the paper's speed" in rows["table1_mean_time_200"].explanation
