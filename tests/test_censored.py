@@ -83,3 +83,26 @@ def test_table1_keeps_the_papers_speeds_whatever_the_configuration_runs():
     assert np.isnan(rows["table1_m_opt_200"].reproduced)
     assert rows["table1_m_opt_210"].reproduced == 1.0
     assert "does not run the paper's speed" in rows["table1_mean_time_200"].explanation
+
+
+def test_a_reduction_from_nothing_is_no_number():
+    from rotorvib.papers.b.claims import reduction
+
+    assert reduction(90.0, 200.0) == pytest.approx(55.0)
+    assert np.isnan(reduction(0.0, 0.0)) and np.isnan(reduction(1.0, 0.0))
+    assert np.isnan(reduction(np.nan, 4.6))
+
+
+def test_the_law_figure_where_the_law_predicts_no_balanced_run_says_so():
+    """Found by the fuzzer: a balance threshold of 0.1 m balances every run at once, and the law
+    (a decay from the passage's peak) predicts none of them."""
+    from rotorvib.papers.b.beyond_figures import balance_law
+
+    nan = np.full(2, np.nan)
+    law = xr.Dataset(
+        {"balance_time": ("run", np.zeros(2)), "predicted": ("run", nan),
+         "relative_error": ("run", nan)},
+        coords={"source": ("run", ["balance_beta"] * 2),
+                "kinematics_name": ("run", ["printed"] * 2)})
+    texts = [t.get_text() for ax in balance_law(law, {}).axes for t in ax.texts]
+    assert texts and all("the law predicts none of the balanced runs" in t for t in texts)

@@ -180,7 +180,8 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                                         / np.nanmin(curves, axis=-1)))
     shortest = float(np.nanmin([np.nanmin(b.balance_time.values), np.nanmin(m.balance_time.values)]))
     rows.append(_claim("mass_over_damping",
-                       Margin(spread["mass"] - spread["beta"], 4 * time_uncertainty / shortest,
+                       Margin(spread["mass"] - spread["beta"],
+                              4 * time_uncertainty / shortest if shortest else math.inf,
                               "relative change", "balance times to the integration's accuracy, "
                                                  "relative to the shortest"),
                        f"mean balance time (over the ICs) changes by {100 * spread['mass']:.0f} % "
@@ -250,8 +251,8 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
                          f"time after which F stays below k x r_threshold (the force of the balance "
                          f"criterion; the paper does not define its decay time); threshold "
                          f"balance time {r['balance_time_s']:.2f} s"))
-    f_red = 100 * (1 - t2[-1]["force_max_N"] / t2[0]["force_max_N"])
-    t_red = 100 * (1 - t2[-1]["force_decay_time_s"] / t2[0]["force_decay_time_s"])
+    f_red = reduction(t2[-1]["force_max_N"], t2[0]["force_max_N"])
+    t_red = reduction(t2[-1]["force_decay_time_s"], t2[0]["force_decay_time_s"])
     printed_f = 100 * (1 - paper["table2_fmax_3"] / paper["table2_fmax_1"])
     printed_t = 100 * (1 - paper["table2_decay_3"] / paper["table2_decay_1"])
     rows.append(_row("table2_reduction_force", f_red,
@@ -264,7 +265,8 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
     lead, decay_last = optimum_lead([r["force_max_N"] for r in t2],
                                     [r["force_decay_time_s"] for r in t2])
     rows.append(_claim("fig16_optimum_best",
-                       Margin(lead, time_uncertainty / decay_last, "relative",
+                       Margin(lead, time_uncertainty / decay_last if decay_last else math.inf,
+                              "relative",
                               "decay times to the integration's accuracy"),
                      "peak forces "
                      + ", ".join(f"{r['force_max_N']:.1f} N" for r in t2) + "; decay times "
@@ -285,6 +287,12 @@ def table1_at_paper_speeds(rows: list[Reproduced], paper: dict) -> list[Reproduc
              "(paper_b.table1.speeds) does not run the paper's speed")
         for key in paper if re.fullmatch(r"table1_(m_opt|mean_time)_\d+", key)
         and key not in made]
+
+
+def reduction(new: float, old: float) -> float:
+    """``100 (1 - new / old)`` (%), NaN where ``old`` is 0 (found by the fuzzer: a balance
+    threshold above every force makes Table 2's decay times 0) or either is NaN."""
+    return math.nan if old == 0 else 100 * (1 - new / old)
 
 
 def runup_end(alpha) -> int:
