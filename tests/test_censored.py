@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from rotorvib.comparison import claim_verdict
-from rotorvib.papers.b.claims import optimum_lead
+from rotorvib.papers.b.row_values import optimum_lead
 
 
 def test_fig16s_optimum_loses_when_only_its_force_never_decays():
@@ -62,7 +62,7 @@ def test_the_basin_distribution_of_a_case_that_never_balances_shows_zero():
 
 
 def test_a_run_up_shorter_than_the_sample_step_is_over_by_the_first_sample():
-    from rotorvib.papers.b.claims import runup_end
+    from rotorvib.papers.b.row_values import runup_end
 
     assert runup_end([50.0, 50.0, 50.0, 0.0, 0.0]) == 3
     assert runup_end([0.0, 0.0, 0.0]) == 1        # paper_b.speed.t_ramp below sample_dt
@@ -70,7 +70,7 @@ def test_a_run_up_shorter_than_the_sample_step_is_over_by_the_first_sample():
 
 def test_table1_keeps_the_papers_speeds_whatever_the_configuration_runs():
     from rotorvib.comparison import Reproduced
-    from rotorvib.papers.b.claims import table1_at_paper_speeds
+    from rotorvib.papers.b.row_values import table1_at_paper_speeds
 
     paper = {"table1_m_opt_200": 0.006, "table1_mean_time_200": 4.7,
              "table1_m_opt_210": 0.006, "table1_mean_time_210": 4.4,
@@ -86,7 +86,7 @@ def test_table1_keeps_the_papers_speeds_whatever_the_configuration_runs():
 
 
 def test_a_reduction_from_nothing_is_no_number():
-    from rotorvib.papers.b.claims import reduction
+    from rotorvib.papers.b.row_values import reduction
 
     assert reduction(90.0, 200.0) == pytest.approx(55.0)
     assert np.isnan(reduction(0.0, 0.0)) and np.isnan(reduction(1.0, 0.0))

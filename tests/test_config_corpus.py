@@ -122,6 +122,7 @@ CASES = [
     ("paper_c.mass_ratio_family.mu", [0.2, 0.06, 0.85, 1.0], None),
     ("paper_c.claims.fig6_mu.others", [0.2, 0.5], "paper_c.mass_ratio_family.mu"),
     ("paper_c.distance_study.offsets", [-0.5, 0.0], None),      # through the disk centre
+    ("paper_b.ross_check.speeds.min", 0.0, None),                # a rotor at rest
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),

@@ -231,7 +231,7 @@ def test_a_dataset_made_under_another_configuration_is_refused(run_dir, tmp_path
     made under the old configuration is still refused by the job that reads it."""
     work = copy_run(run_dir, tmp_path / "work")
     change = tmp_path / "change.yaml"
-    change.write_text("paper_c:\n  mass_ratio_family:\n    mu: [0.5, 1.0]\n")
+    change.write_text("paper_c:\n  mass_ratio_family:\n    mu: [0.2, 0.6, 0.85, 1.0, 1.2]\n")
     log = _figure_job_error(work, str(change), "--rerun-triggers", "mtime")
     assert ("results/paper_c/datasets/mass_ratio.nc was made by rule 'c_mass_ratio' under "
             "another configuration") in log

@@ -158,13 +158,23 @@ def distance_problems(c: dict) -> list[str]:
             f"exceed {-nearest:g} m"]
 
 
+def ross_problems(b: dict) -> list[str]:
+    """The ROSS cross-check's steady responses are at speeds above zero (at rest there is no
+    unbalance force to respond to; found by the fuzzer: a speed of 0 failed inside b_ross)."""
+    lowest = b["ross_check"]["speeds"]["min"]
+    return ([] if lowest > 0 else
+            [f"config key 'paper_b.ross_check.speeds.min': {lowest!r} must be > 0 (a steady "
+             "unbalance response needs a spinning rotor)"])
+
+
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
     run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
     below the existence bound, a run the engine would refuse, a stability-boundary plane that
     cannot start, a GA-optimum study with nothing to fit, a Fig 6 claim about a curve the
-    mass-ratio family does not draw, a distance offset through the disk centre."""
+    mass-ratio family does not draw, a distance offset through the disk centre, a ROSS speed
+    of zero."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -181,4 +191,4 @@ def problems(config: dict) -> list[str]:
                          f"({ga['seed']}), whose result it would count twice")
     return (found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
             + ga_law_problems(b) + fig6_problems(config["paper_c"])
-            + distance_problems(config["paper_c"]))
+            + distance_problems(config["paper_c"]) + ross_problems(b))

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-import re
 from functools import partial
 
 import numpy as np
@@ -20,6 +19,8 @@ from rotorvib.comparison import Margin, Reproduced, merge_variants
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.curves import (as_longest, dip_depth, faster_share, mean_over_ics,
                                       largest_fall, rise, share_balanced_by, timed, within)
+from rotorvib.papers.b.row_values import (optimum_lead, reduction, runup_end,
+                                         table1_at_paper_speeds)
 
 PAPER = "B"
 _row = partial(Reproduced.of, PAPER)
@@ -274,45 +275,6 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
                                  if np.isfinite(r["force_decay_time_s"]) else "none by t_end"
                                  for r in t2)))
     return rows
-
-
-def table1_at_paper_speeds(rows: list[Reproduced], paper: dict) -> list[Reproduced]:
-    """Table 1's rows at the speeds the paper prints: a speed of the configuration's Table 1
-    that the paper does not print has no row, and one the paper prints that the configuration
-    does not run has a row without a value, saying so (found by the fuzzer: another speed in
-    paper_b.table1.speeds stopped the comparison)."""
-    made = {row.quantity for row in rows}
-    return [row for row in rows if row.quantity in paper] + [
-        _row(key, math.nan, "not reproduced: this configuration's Table 1 "
-             "(paper_b.table1.speeds) does not run the paper's speed")
-        for key in paper if re.fullmatch(r"table1_(m_opt|mean_time)_\d+", key)
-        and key not in made]
-
-
-def reduction(new: float, old: float) -> float:
-    """``100 (1 - new / old)`` (%), NaN where ``old`` is 0 (found by the fuzzer: a balance
-    threshold above every force makes Table 2's decay times 0) or either is NaN."""
-    return math.nan if old == 0 else 100 * (1 - new / old)
-
-
-def runup_end(alpha) -> int:
-    """The index of the first sample after which the angular acceleration ``alpha`` (samples
-    from t = 0) stays zero; a run-up shorter than the sample step is over by the first sample
-    after t = 0 (found by the fuzzer: paper_b.speed.t_ramp = 0.0005 s had no such sample)."""
-    accelerating = np.flatnonzero(np.asarray(alpha) != 0.0)
-    return int(accelerating[-1]) + 1 if accelerating.size else min(1, len(alpha) - 1)
-
-
-def optimum_lead(forces, decay_times) -> tuple[float, float]:
-    """How far the last row (the optimum) leads every other in peak force and force decay time,
-    ``min(F_i / F_opt, T_i / T_opt) - 1`` over the others, and its decay time.  A force that
-    never decays by t_end (NaN) decays later than any that does: infinite here, so that it
-    loses to a decaying row, and two such rows decide nothing (inf/inf is NaN)."""
-    force = np.asarray(forces, float)
-    decay = np.nan_to_num(np.asarray(decay_times, float), nan=np.inf)
-    with np.errstate(invalid="ignore"):                  # inf/inf: NaN, as meant
-        lead = np.min(np.concatenate([force[:-1] / force[-1], decay[:-1] / decay[-1]])) - 1
-    return float(lead), float(decay[-1])
 
 
 def _run_of(tr: xr.Dataset, name: str) -> xr.Dataset:
