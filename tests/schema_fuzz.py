@@ -20,8 +20,10 @@ import argparse
 import copy
 import json
 import math
+import os
 import random
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -160,7 +162,7 @@ def run_accepted(run_dir: Path, budget: float, seed: int, timeout: float) -> lis
     """Accepted mutations, in a random order of ``seed``, each run by ``snakemake -j2`` in a
     copy of the finished reduced run ``run_dir`` until ``budget`` seconds are spent; a run
     that takes more than ``timeout`` seconds is stopped and counted slow, not failed."""
-    from workflow_runs import REDUCED, copy_run, snakemake
+    from workflow_runs import REDUCED, copy_run
 
     base = reduced_config()
     todo = mutations(base)
@@ -178,13 +180,10 @@ def run_accepted(run_dir: Path, budget: float, seed: int, timeout: float) -> lis
             work = copy_run(run_dir, Path(scratch) / f"run{i}")
             (work / "fuzz.yaml").write_text(yaml.safe_dump(override(base, path, value)))
             start = time.perf_counter()
-            try:
-                run = snakemake(work, "-j2", *REDUCED, "fuzz.yaml", check=False,
-                                timeout=timeout)
-                status = "ran" if run.returncode == 0 else "failed"
-                message = "" if status == "ran" else _error_lines(run.stdout + run.stderr)
-            except subprocess.TimeoutExpired:
-                status, message = "slow", f"stopped after {timeout:g} s"
+            code, log = _run_workflow(work, [*REDUCED, "fuzz.yaml"], timeout)
+            status = {0: "ran", None: "slow"}.get(code, "failed")
+            message = {"ran": "", "slow": f"stopped after {timeout:g} s"}.get(
+                status, _error_lines(log))
             seconds = time.perf_counter() - start
             spent += seconds
             outcomes.append(Outcome(dotted(path), value, status, seconds, message))
@@ -193,6 +192,24 @@ def run_accepted(run_dir: Path, budget: float, seed: int, timeout: float) -> lis
                 print("        " + message.replace("\n", "\n        "), flush=True)
             shutil.rmtree(work, ignore_errors=True)
     return outcomes
+
+
+def _run_workflow(work: Path, args: list[str], timeout: float) -> tuple[int | None, str]:
+    """``snakemake -j2 args`` in ``work`` (as tests/workflow_runs.py runs it): its exit code
+    and log, or None when it took longer than ``timeout`` seconds; then its whole process
+    group is stopped, the jobs it started included."""
+    from workflow_runs import BIN, environment
+
+    with subprocess.Popen([str(BIN / "snakemake"), "-j2", *args], cwd=work, text=True,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          env=environment(work), start_new_session=True) as run:
+        try:
+            log, _ = run.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(run.pid, signal.SIGKILL)
+            run.communicate()
+            return None, ""
+    return run.returncode, log
 
 
 def _error_lines(log: str) -> str:
