@@ -154,7 +154,8 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinem
     paper's values to set against the bands, quantity -> key in the paper values) over
     ``ranges`` (input -> ``[low, high]`` for every input but R) and ``R_band``
     (:func:`calibrated_band`: low, high and how they were found); the nominal run is the case
-    as the paper runs it: R and r(0) of ``setup``, no tolerances.  ``runs`` as :func:`run_case`'s."""
+    as the paper runs it: R and r(0) of ``setup``, no tolerances.  ``runs`` as
+    :func:`run_case`'s."""
     R_low, R_high, R_how = R_band
     spec = problem({"R": (R_low, R_high), **{name: tuple(ranges[name])
                                               for name in INPUTS[1:]}})
