@@ -182,8 +182,8 @@ def run_accepted(run_dir: Path, budget: float, seed: int, timeout: float) -> lis
             start = time.perf_counter()
             code, log = _run_workflow(work, [*REDUCED, "fuzz.yaml"], timeout)
             status = {0: "ran", None: "slow"}.get(code, "failed")
-            message = {"ran": "", "slow": f"stopped after {timeout:g} s"}.get(
-                status, _error_lines(log))
+            message = {"ran": "", "slow": f"stopped after {timeout:g} s",
+                       "failed": _error_lines(log) if code else ""}[status]
             seconds = time.perf_counter() - start
             spent += seconds
             outcomes.append(Outcome(dotted(path), value, status, seconds, message))
