@@ -123,6 +123,9 @@ CASES = [
     ("paper_c.claims.fig6_mu.others", [0.2, 0.5], "paper_c.mass_ratio_family.mu"),
     ("paper_c.distance_study.offsets", [-0.5, 0.0], None),      # through the disk centre
     ("paper_b.ross_check.speeds.min", 0.0, None),                # a rotor at rest
+    ("paper_b.balance.integrator.rtol", 1e-14, "paper_b.balance.integrator.rtol"),
+    ("paper_a.rk.rtol", 2e-14, None), ("paper_c.time_response.rtol", 1e-14, None),
+    ("paper_b.stability_maps.fig3.m_bar.n", 1, None),
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),

@@ -1,13 +1,15 @@
 """The configuration's checks beyond its schema (:func:`problems`): paper B's studies, Sobol
 designs, the existence bound of every ball mass and the engine's limits on a run, each named by
 its config key.  The workflow runs them when it reads the configuration, before any job, so
-they import numpy and the engine's limits only, not the compiled engine."""
+they import numpy, the engine's limits and the integrators' tolerance floor only, not the
+compiled engine."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from rotorvib.checks import sobol_design_problem
+from rotorvib.methods.integrate import RTOL_MIN
 from rotorvib.models.balancer.limits import radians_problem, samples_problem
 
 
@@ -167,6 +169,29 @@ def ross_problems(b: dict) -> list[str]:
              "unbalance response needs a spinning rotor)"])
 
 
+def tolerance_problems(config: dict) -> list[str]:
+    """Every integrator's relative tolerance at or above what double precision can deliver
+    (:data:`rotorvib.methods.integrate.RTOL_MIN`, which the integrators refuse below; found by
+    the fuzzer: the schema's 1e-14 passed and failed inside paper B's jobs)."""
+    return [f"config key '{key}.rtol': {rtol!r} is below {RTOL_MIN:.3g}, the least relative "
+            "error double precision can deliver"
+            for key, rtol in (("paper_a.rk", config["paper_a"]["rk"]["rtol"]),
+                              ("paper_b.balance.integrator",
+                               config["paper_b"]["balance"]["integrator"]["rtol"]),
+                              ("paper_c.time_response",
+                               config["paper_c"]["time_response"]["rtol"]))
+            if rtol < RTOL_MIN]
+
+
+def map_problems(b: dict) -> list[str]:
+    """A stability map is drawn over its grid: each axis needs two points at least (found by
+    the fuzzer: Fig 3's m_bar with one point failed in its figure)."""
+    return [f"config key 'paper_b.stability_maps.{fig}.{axis}.n': {grid['n']} point; a map "
+            "needs at least 2 along each axis"
+            for fig, axes in b["stability_maps"].items() for axis, grid in axes.items()
+            if isinstance(grid, dict) and grid["n"] < 2]
+
+
 def problems(config: dict) -> list[str]:
     """Every problem of a configuration that satisfies the schema: a paper B study that does
     not name beta, mass and eps_bar once each, a Sobol design (papers B and C) that cannot be
@@ -174,7 +199,8 @@ def problems(config: dict) -> list[str]:
     below the existence bound, a run the engine would refuse, a stability-boundary plane that
     cannot start, a GA-optimum study with nothing to fit, a Fig 6 claim about a curve the
     mass-ratio family does not draw, a distance offset through the disk centre, a ROSS speed
-    of zero."""
+    of zero, a tolerance finer than double precision, a stability map of one point along an
+    axis."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -191,4 +217,5 @@ def problems(config: dict) -> list[str]:
                          f"({ga['seed']}), whose result it would count twice")
     return (found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
             + ga_law_problems(b) + fig6_problems(config["paper_c"])
-            + distance_problems(config["paper_c"]) + ross_problems(b))
+            + distance_problems(config["paper_c"]) + ross_problems(b)
+            + tolerance_problems(config) + map_problems(b))
