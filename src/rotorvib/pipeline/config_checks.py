@@ -26,6 +26,12 @@ def study_problem(study: dict) -> str | None:
     return None
 
 
+def given_values(study: dict) -> dict:
+    """The parameters a ``balance_studies`` entry gives besides its axis: its ``fixed`` values
+    and its ``each`` lists."""
+    return {**study["fixed"], **study.get("each", {})}
+
+
 def existence_problems(b: dict) -> list[str]:
     """Every ball mass of a paper B study (not of the stability maps, which chart where a
     balanced state exists) below the existence bound (34) ``m >= eps_bar M / 2`` of its
@@ -54,7 +60,7 @@ def existence_problems(b: dict) -> list[str]:
         check(f"time_responses.{name}.m_bar", tr[name]["m_bar"], tr[name]["eps_bar"], True)
     check("time_responses.fig15.masses", tr["fig15"]["masses"], tr["fig15"]["eps_bar"])
     for name, study in b["balance_studies"].items():
-        values = {**study["fixed"], **study.get("each", {})}
+        values = given_values(study)
         if study["axis"] in ("mass", "eps_bar"):  # the worst case: least mass, largest eps_bar
             values[study["axis"]] = study["range"]["min" if study["axis"] == "mass" else "max"]
         if "mass" in values and "eps_bar" in values:
@@ -84,7 +90,7 @@ def run_budget_problems(b: dict) -> list[str]:
              "paper_b.table1.beta": b["table1"]["beta"] * omega_n}
     for name, study in b["balance_studies"].items():
         speeds = [study["range"]["max"]] if study["axis"] == "speed" else []
-        speeds += list(np.atleast_1d({**study["fixed"], **study.get("each", {})}.get("speed", [])))
+        speeds += list(np.atleast_1d(given_values(study).get("speed", [])))
         if speeds:
             rates[f"paper_b.balance_studies.{name}"] = max(speeds)
     for key, rate in rates.items():

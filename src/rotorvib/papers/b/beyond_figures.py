@@ -18,14 +18,17 @@ def balance_law(law, paper):
     90th percentile."""
     errors = law.relative_error.values
     fig, (ax1, ax2) = figure(1, 2, figsize=(11.0, 4.6))
+    ax1.set(xlabel="balance time, integration (s)", ylabel="balance time, law (s)",
+            title="t_pk + ln(F_pk / (k r_thr)) / sigma")
+    ax2.set(xlabel="relative error of the law (%)", ylabel="runs",
+            title="error of the law over the balanced runs")
     if not np.isfinite(errors).any():    # e.g. a support without damping, a huge threshold
         why = ("no run balanced by t_end" if not np.isfinite(law.balance_time.values).any()
                else "the law predicts none of the balanced runs")
         for ax in (ax1, ax2):
             ax.text(0.5, 0.5, f"{why}:\nno balance time to compare with", ha="center",
                     va="center", transform=ax.transAxes)
-            ax.set(xlabel="balance time, integration (s)", xticks=[], yticks=[])
-        ax1.set(ylabel="balance time, law (s)")
+            ax.set(xticks=[], yticks=[])
         return fig
     for i, source in enumerate(dict.fromkeys(law.source.values)):
         sel = law.source.values == source
@@ -33,8 +36,6 @@ def balance_law(law, paper):
                  color=f"C{i}", alpha=0.5, label=f"{source} ({sel.sum()} runs)")
     span = [float(np.nanmin(law.balance_time)), float(np.nanmax(law.balance_time))]
     ax1.plot(span, span, "k", lw=1, label="law = integration")
-    ax1.set(xlabel="balance time, integration (s)", ylabel="balance time, law (s)",
-            title="t_pk + ln(F_pk / (k r_thr)) / sigma")
     ax1.legend(fontsize=7, markerscale=3)
     shown = errors[np.isfinite(errors)]
     ax2.hist(100 * shown, bins=80, color="0.6", label=f"{shown.size} balanced runs")
@@ -43,8 +44,6 @@ def balance_law(law, paper):
         ax2.axvline(value, color="C3", ls=style, lw=1.2, label=f"|error| {q}th percentile: "
                                                                f"{value:.1f} %")
         ax2.axvline(-value, color="C3", ls=style, lw=1.2)
-    ax2.set(xlabel="relative error of the law (%)", ylabel="runs",
-            title="error of the law over the balanced runs")
     ax2.legend(fontsize=7)
     return fig
 
