@@ -1,7 +1,6 @@
 """The shipped SLURM profile on a real one-node SLURM cluster, rebuilding part of a reduced run
 (tests/workflow_runs.py)."""
 
-import filecmp
 import os
 import re
 import subprocess
@@ -11,7 +10,7 @@ import pytest
 import yaml
 
 from conftest import ROOT
-from workflow_runs import REDUCED, copy_run, digests, job_counts, job_records, snakemake
+from workflow_runs import REDUCED_SHARDED, copy_run, digests, job_counts, job_records, snakemake
 
 pytestmark = pytest.mark.workflow
 
@@ -35,10 +34,13 @@ def slurm_cluster(tmp_path_factory):
         subprocess.run([str(CLUSTER), "stop", str(where)], timeout=120)
 
 
-# One dataset job of each paper to rerun on the cluster; the profile gives b_balance_study
-# more than one thread.
-CLUSTER_RULES = ("a_stability", "b_balance_study", "c_mass_ratio")
 SLURM_PROFILE = ROOT / "workflow/profiles/slurm/config.yaml"
+#: The sharded study the cluster test rebuilds, its shards and the rule of each
+SHARDED_STUDY = "paper_b/datasets/balance_beta.nc"
+SHARDS = [f"paper_b/shards/balance_beta.{k}-of-3.nc" for k in range(3)]
+STUDY_RULES = {"b_balance_study_shard": 3, "b_balance_study": 1}
+#: A dataset job of papers A and C to rerun on the cluster
+OTHER_RULES = ("a_stability", "c_mass_ratio")
 
 
 def workflow_rules() -> set[str]:
@@ -58,63 +60,47 @@ def slurm_record(job_id: str, env: dict) -> str:
                           env={**os.environ, **env}).stdout
 
 
-def test_the_shipped_slurm_profile_runs_on_a_real_cluster(run_dir, tmp_path, slurm_cluster):
-    """Three datasets and the comparison are removed from a finished reduced run and rebuilt
-    through workflow/profiles/slurm as the README says: the datasets as SLURM jobs (with the
-    threads the profile sets), their figures, values and the comparison as local rules; every
-    result comes back byte-identical. A hang fails the test (15 min bound)."""
-    work = copy_run(run_dir, tmp_path / "work")
+def test_the_shipped_slurm_profile_runs_on_a_real_cluster(runs, tmp_path, slurm_cluster):
+    """Datasets of each paper and the comparison are removed from the sharded reduced run
+    (tests/workflow_runs.py) and rebuilt through workflow/profiles/slurm as the README says:
+    paper B's beta study as three shard jobs (side by side where the node has room) and its
+    gathering job, the others a SLURM job each, with the threads the profile sets; their
+    figures, values and the comparison as local rules. Every result comes back byte-identical
+    (so the gathered study equals the unsharded run's, test_workflow.py). A hang fails the
+    test (15 min bound)."""
+    work = copy_run(runs[1], tmp_path / "work")
     before = digests(work)
     comparison = (work / "results/comparison.csv").read_bytes()
     made = {r["rule"]: min(r["output"]) for r in sorted(job_records(work), key=lambda r: r["output"])
-            if r["rule"] in CLUSTER_RULES}
-    for path in [*made.values(), "results/comparison.csv"]:
+            if r["rule"] in OTHER_RULES}
+    for path in [*made.values(), *(f"results/{name}" for name in [SHARDED_STUDY, *SHARDS]),
+                 "results/comparison.csv"]:
         (work / path).unlink()
-    run = snakemake(work, "--workflow-profile", "workflow/profiles/slurm", *REDUCED,
+    run = snakemake(work, "--workflow-profile", "workflow/profiles/slurm", *REDUCED_SHARDED,
                     env=slurm_cluster, timeout=900)
     log = run.stdout + run.stderr
     submitted = submitted_jobs(log)
     per_rule = Counter(submitted.values())
     planned = job_counts(run)
-    assert set(CLUSTER_RULES) <= set(per_rule), log
+    assert set(OTHER_RULES) | set(STUDY_RULES) <= set(per_rule), log
     assert all(per_rule[rule] == planned[rule] for rule in per_rule), (per_rule, planned)
+    assert all(per_rule[rule] == count for rule, count in STUDY_RULES.items()), per_rule
     figures = {rule for rule in planned if rule.startswith("figures_")}
     assert figures and planned["comparison"] == 1      # ran, but locally:
     assert not figures & set(per_rule) and "comparison" not in per_rule
     threads = yaml.safe_load(SLURM_PROFILE.read_text())["set-threads"]
-    assert threads["b_balance_study"] > 1 and set(threads) <= workflow_rules()
+    assert threads["b_balance_study_shard"] > 1 and set(threads) <= workflow_rules()
+    spans = []
     for job_id, rule in submitted.items():
         record = slurm_record(job_id, slurm_cluster)
         assert "JobState=COMPLETED" in record, record
         if rule in threads:
             assert f"NumCPUs={threads[rule]} " in record, record
-    assert digests(work) == before
-    assert (work / "results/comparison.csv").read_bytes() == comparison
-
-
-def test_a_study_sharded_over_slurm_jobs_gathers_the_local_bytes(run_dir, tmp_path,
-                                                                 slurm_cluster):
-    """Paper B's beta study split into three shards (paper_b.shards = 3) through the shipped
-    profile: each shard a SLURM job of its own, completed, with the profile's threads; the
-    gathered dataset byte-identical to the reduced run's unsharded one."""
-    work = copy_run(run_dir, tmp_path / "work")
-    (work / "sharded.yaml").write_text("results: results/sharded\npaper_b:\n  shards: 3\n")
-    name = "paper_b/datasets/balance_beta.nc"
-    run = snakemake(work, "--workflow-profile", "workflow/profiles/slurm", *REDUCED,
-                    "sharded.yaml", "--", f"results/sharded/{name}", env=slurm_cluster,
-                    timeout=900)
-    log = run.stdout + run.stderr
-    submitted = submitted_jobs(log)
-    shards = [job for job, rule in submitted.items() if rule == "b_balance_study_shard"]
-    assert len(shards) == 3 and list(submitted.values()).count("b_balance_study") == 1, log
-    threads = yaml.safe_load(SLURM_PROFILE.read_text())["set-threads"]["b_balance_study_shard"]
-    spans = []
-    for job in shards:
-        record = slurm_record(job, slurm_cluster)
-        assert "JobState=COMPLETED" in record and f"NumCPUs={threads} " in record, record
-        spans.append(re.search(r"StartTime=(\S+) EndTime=(\S+)", record).groups())
+        if rule == "b_balance_study_shard":
+            spans.append(re.search(r"StartTime=(\S+) EndTime=(\S+)", record).groups())
     node = subprocess.run(["scontrol", "show", "node"], capture_output=True, text=True,
                           env={**os.environ, **slurm_cluster}).stdout
-    if int(re.search(r"CPUTot=(\d+)", node).group(1)) >= 2 * threads:   # room for two at once
+    if int(re.search(r"CPUTot=(\d+)", node).group(1)) >= 2 * threads["b_balance_study_shard"]:
         assert any(a[0] < b[1] and b[0] < a[1] for a in spans for b in spans if a != b), spans
-    assert filecmp.cmp(work / "results" / name, work / "results/sharded" / name, shallow=False)
+    assert digests(work) == before
+    assert (work / "results/comparison.csv").read_bytes() == comparison

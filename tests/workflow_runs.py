@@ -1,10 +1,11 @@
 """The reduced workflow runs that the end-to-end tests share, and the helpers that drive them.
 
 Two reduced runs (config/test/config.yaml), each in its own copy of the repository, are built
-once per test session by :func:`shared_runs`: the first pytest-xdist worker to need them builds
+once per test session by :func:`shared_runs`, the second with every batch study of paper B in
+three shards (:data:`REDUCED_SHARDED`): the first pytest-xdist worker to need them builds
 them while the other waits on a lock, then both use them.  The tests that read them live in
-several files (test_workflow.py, test_delivery.py, test_cluster.py) so that the two workers share
-them; a test never changes a run in place (it works in a copy, :func:`copy_run`), as another
+several files (test_workflow.py, test_shards.py, test_delivery.py, test_cluster.py) so that the
+two workers share them; a test never changes a run in place (it works in a copy, :func:`copy_run`), as another
 worker may be reading or copying it at the same time.
 """
 
@@ -28,6 +29,8 @@ BIN = Path(sys.executable).parent
 #: The reduced configuration, its outputs under results/ (tests/config/results_at_root.yaml).
 REDUCED = ["--configfile", "config/config.yaml", "config/test/config.yaml",
            "tests/config/results_at_root.yaml"]
+#: The reduced configuration with paper B's batch studies in three shards each.
+REDUCED_SHARDED = [*REDUCED, "tests/config/three_shards.yaml"]
 RECORDER = ROOT / "tests/oracles/job_recorder"
 RECORDS = "job_records"
 
@@ -157,11 +160,15 @@ def compile_the_engine() -> None:
 
 def build_runs(root: Path) -> list[Path]:
     """Two independent reduced runs under ``root``, each in its own copy of the repository,
-    side by side (two runs share the two cores better than one run followed by another)."""
+    side by side (two runs share the two cores better than one run followed by another): the
+    first with every study in one job, the second with paper B's batch studies sharded
+    (:data:`REDUCED_SHARDED`). Their results must agree byte for byte: one comparison checks
+    that a run is deterministic and that sharding changes nothing."""
     compile_the_engine()
-    works = [copy_repository(root / name) for name in ("repo", "twin")]
+    works = [copy_repository(root / name) for name in ("repo", "sharded")]
     with ThreadPoolExecutor(len(works)) as pool:
-        list(pool.map(lambda work: snakemake(work, "-j2", *REDUCED), works))
+        list(pool.map(lambda run: snakemake(run[0], "-j2", *run[1]),
+                      zip(works, (REDUCED, REDUCED_SHARDED))))
     return works
 
 
