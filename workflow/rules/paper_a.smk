@@ -80,6 +80,7 @@ rule a_responses:
     benchmark:
         benchmarks("a_responses")
     priority: COMPUTES
+    localrule: True
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -101,6 +102,7 @@ rule a_stability:
     benchmark:
         benchmarks("a_stability")
     priority: COMPUTES
+    localrule: True
     params:
         case=A["case"],
         fig7=A["fig7"],
@@ -118,6 +120,7 @@ rule a_error_study:
     benchmark:
         benchmarks("a_error_study")
     priority: COMPUTES
+    localrule: True
     params:
         case=A["case"],
         offset=A["initial_offset"],
@@ -138,6 +141,7 @@ rule a_slow_flow:
     benchmark:
         benchmarks("a_slow_flow")
     priority: COMPUTES
+    localrule: True
     params:
         case=A["case"],
         flow=A["slow_flow"],

@@ -284,6 +284,7 @@ rule b_derivation_checks:
     benchmark:
         benchmarks("b_derivation_checks")
     priority: BESIDE_THE_COMPILE
+    localrule: True
     params:
         module="rotorvib.papers.b.derivation",
     message:
@@ -302,6 +303,7 @@ rule b_stability:
     wildcard_constraints:
         fig="|".join(B["stability_maps"]),
     priority: LONGEST_CHAIN
+    localrule: True
     params:
         zeta=B["machine"]["zeta"],
         n=B["machine"]["n"],
@@ -345,6 +347,7 @@ rule b_ross:
     benchmark:
         benchmarks("b_ross")
     priority: COMPUTES
+    localrule: True
     params:
         setup=B_SETUP,
         eps_bar=B["table2"]["eps_bar"],
@@ -388,6 +391,7 @@ use rule b_balance_study_shard as b_balance_study with:
         logs("b_balance_{study}"),
     benchmark:
         benchmarks("b_balance_{study}")
+    localrule: True
 
 
 rule b_time_responses:
@@ -398,6 +402,7 @@ rule b_time_responses:
     benchmark:
         benchmarks("b_time_responses")
     priority: LONGEST_CHAIN
+    localrule: True
     params:
         **B_RUNS,
         responses=B["time_responses"],
@@ -440,6 +445,7 @@ use rule b_ga_shard as b_ga with:
         logs("b_ga"),
     benchmark:
         benchmarks("b_ga")
+    localrule: True
 
 
 rule b_table1_runs_shard:
@@ -474,6 +480,7 @@ use rule b_table1_runs_shard as b_table1_runs with:
         logs("b_table1_runs"),
     benchmark:
         benchmarks("b_table1_runs")
+    localrule: True
 
 
 rule b_forces_shard:
@@ -509,6 +516,7 @@ use rule b_forces_shard as b_forces with:
         logs("b_forces"),
     benchmark:
         benchmarks("b_forces")
+    localrule: True
 
 
 rule b_uncertainty_shard:
@@ -559,6 +567,7 @@ use rule b_uncertainty_shard as b_uncertainty with:
         logs("b_uncertainty_{case}"),
     benchmark:
         benchmarks("b_uncertainty_{case}")
+    localrule: True
 
 
 rule b_pareto:
@@ -571,6 +580,8 @@ rule b_pareto:
     wildcard_constraints:
         kinematics="|".join(B["kinematics"]),
     priority: LONGEST_CHAIN
+    # one search each, it cannot be split: a cluster job when the batch studies are (common.smk)
+    localrule: B["shards"] == 1
     resources:
         runtime=30,
     params:
@@ -634,6 +645,7 @@ rule b_ga_law:
     benchmark:
         benchmarks("b_ga_law")
     priority: COMPUTES
+    localrule: True
     params:
         setup=B_SETUP,
         ics=B["initial_conditions"],
@@ -680,6 +692,7 @@ use rule b_basin_shard as b_basin with:
         logs("b_basin"),
     benchmark:
         benchmarks("b_basin")
+    localrule: True
 
 
 rule b_tables:
@@ -776,6 +789,7 @@ rule b_discrepancies:
     benchmark:
         benchmarks("b_discrepancies")
     priority: LONGEST_CHAIN
+    localrule: True
     params:
         paper_b={
             **B_SETUP,

@@ -113,6 +113,7 @@ rule c_derivation_checks:
     benchmark:
         benchmarks("c_derivation_checks")
     priority: COMPUTES
+    localrule: True
     params:
         module="rotorvib.papers.c.derivation",
     message:
@@ -129,6 +130,7 @@ rule c_ga:
     benchmark:
         benchmarks("c_ga")
     priority: COMPUTES
+    localrule: True
     resources:
         runtime=20,
     params:
@@ -152,6 +154,7 @@ rule c_frequency_response:
     benchmark:
         benchmarks("c_frequency_response")
     priority: COMPUTES
+    localrule: True
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -170,6 +173,7 @@ rule c_mass_ratio:
     benchmark:
         benchmarks("c_mass_ratio")
     priority: COMPUTES
+    localrule: True
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -189,6 +193,7 @@ rule c_distance:
     benchmark:
         benchmarks("c_distance")
     priority: COMPUTES
+    localrule: True
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -226,6 +231,7 @@ rule c_time_response:
     benchmark:
         benchmarks("c_time_response")
     priority: COMPUTES
+    localrule: True
     resources:
         runtime=20,
     params:
@@ -249,6 +255,7 @@ rule c_broadband:
     benchmark:
         benchmarks("c_broadband")
     priority: COMPUTES
+    localrule: True
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -270,6 +277,7 @@ rule c_uncertainty:
     benchmark:
         benchmarks("c_uncertainty")
     priority: COMPUTES
+    localrule: True
     params:
         rotor=C["rotor"],
         table2=C["table2"],
@@ -367,6 +375,7 @@ rule c_discrepancies:
     benchmark:
         benchmarks("c_discrepancies")
     priority: COMPUTES
+    localrule: True
     params:
         rotor=C["rotor"],
         table2=C["table2"],
