@@ -6,11 +6,12 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
-from rotorvib.methods.multiple_scales import MultipleScales
+from rotorvib.methods.multiple_scales import ConstantsDiverged, MultipleScales
 from rotorvib.models.balancer import engine, stability
 from rotorvib.models.balancer.expansion import balanced_state, taylor_at
 from rotorvib.models.balancer.parameters import Dimensionless, SpeedProfile, rotating_parameters
 from rotorvib.models.balancer.simulate import BalanceCriterion, run
+from rotorvib.papers.a.studies import offset_vector
 
 J2 = np.array([[0.0, 1.0], [-4.0, -0.3]])        # damped oscillator ...
 T2 = np.zeros((2, 2, 2))
@@ -123,3 +124,20 @@ def test_balancer_error_orders_against_runge_kutta(balancer):
     assert np.log2(e1a / e1b) == pytest.approx(2, abs=0.2)
     assert np.log2(e2a / e2b) == pytest.approx(3, abs=0.3)
     assert e2b < e1b
+
+
+def test_an_offset_beyond_the_expansion_is_its_own_error(config):
+    """Found by the fuzzer (paper_a.case.omega = 0.002): so slow, the configured offset is too
+    far from the balanced state: the two-term constants' equations (eq. 39) have no solution
+    near the one-term constants. The error has its own type, by which the workflow's jobs name
+    the config key; the same direction 1e4 times closer converges, its residual within the
+    solver's tolerance."""
+    slow = {**CASE, "omega": 0.002}
+    ms = MultipleScales.at(*taylor_at(**slow, state=balanced_state(slow["rho"])))
+    offset = offset_vector(**config["paper_a"]["initial_offset"])
+    with pytest.raises(ConstantsDiverged, match="did not converge"):
+        ms.two_term_constants(offset)
+    near = offset * 1e-4
+    a = ms.two_term_constants(near)
+    x = ms.modes @ a + np.einsum("j,k,jki->i", a, a, ms.second_order)
+    assert np.abs(x - near).max() < 1e-9 * np.linalg.norm(near)

@@ -203,6 +203,20 @@ def _figure_job_error(work: Path, *args) -> str:
     return log
 
 
+def test_an_offset_beyond_paper_a_expansion_stops_its_job_naming_the_key(run_dir, tmp_path):
+    """Found by the fuzzer (tests/schema_fuzz.py): a case so slow that the configured offset is
+    beyond the two-term expansion passes every check before the jobs (its limit has no closed
+    form) and stops paper A's responses job, which names the config key and what to change."""
+    work = copy_run(run_dir, tmp_path / "work")
+    run = snakemake(work, "-j1", "results/paper_a/datasets/responses.nc", *REDUCED, "--config",
+                    "paper_a={case: {omega: 0.002}}", check=False)
+    assert run.returncode != 0, run.stdout
+    log = (work / "results/logs/a_responses.log").read_text()
+    assert ("config key 'paper_a.initial_offset': two-term initial conditions did not "
+            "converge") in log
+    assert "a smaller offset" in log and "a smaller offset" in run.stdout + run.stderr
+
+
 def test_a_nan_poisoned_dataset_stops_the_downstream_rule(run_dir, tmp_path):
     """A valid netCDF whose values were overwritten with NaN after its rule wrote it never reaches
     a figure: the reading job stops, naming the file, the variable and the rule to rerun."""

@@ -30,6 +30,11 @@ from scipy.optimize import root
 from rotorvib.checks import finite_array
 
 
+class ConstantsDiverged(ArithmeticError):
+    """The two-term constants' nonlinear equations (eq. 39) have no solution near the one-term
+    constants: the initial state is too far from the equilibrium for the expansion."""
+
+
 @dataclass(frozen=True)
 class Resonance:
     """``lambda_j + lambda_k`` within ``distance`` of ``lambda_l`` (relative to ``|lambda|``)."""
@@ -92,7 +97,8 @@ class MultipleScales:
 
     def two_term_constants(self, x0) -> np.ndarray:
         """``A`` solving the eight nonlinear initial-condition equations (eq. 39), by Newton's
-        method from the one-term constants; raises if it does not converge."""
+        method from the one-term constants; :class:`ConstantsDiverged` if it does not
+        converge."""
         x0 = self.initial_state(x0)
         n = len(x0)
         if np.isnan(self.second_order).any():
@@ -110,8 +116,8 @@ class MultipleScales:
                    options={"xtol": 1e-13})
         misfit = np.linalg.norm(residual(sol.x))
         if not misfit <= 1e-9 * max(np.linalg.norm(x0), 1e-300):
-            raise ArithmeticError(f"two-term initial conditions did not converge (residual "
-                                  f"{misfit:.2e}): {sol.message}")
+            raise ConstantsDiverged(f"two-term initial conditions did not converge (residual "
+                                    f"{misfit:.2e}): {' '.join(sol.message.split())}")
         return sol.x[:n] + 1j * sol.x[n:]
 
     def linear_two_term_constants(self, x0) -> tuple[np.ndarray, np.ndarray]:
