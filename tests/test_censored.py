@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 
 from rotorvib.comparison import claim_verdict
+from rotorvib.papers.b.curves import seconds_text
 from rotorvib.papers.b.row_values import optimum_lead
 
 
@@ -106,3 +107,11 @@ def test_the_law_figure_where_the_law_predicts_no_balanced_run_says_so():
                 "kinematics_name": ("run", ["printed"] * 2)})
     texts = [t.get_text() for ax in balance_law(law, {}).axes for t in ax.texts]
     assert texts and all("the law predicts none of the balanced runs" in t for t in texts)
+
+
+def test_a_censored_time_reads_as_words_not_nan():
+    """Fig 11's beta = 0.1 run under the consistent kinematics never balances: its row said
+    'beta0.1 nan s'; a time that never comes is said so."""
+    assert seconds_text(4.904) == "4.90 s"
+    assert seconds_text(float("nan")) == "not balanced by t_end"
+    assert seconds_text(float("nan"), "none by t_end") == "none by t_end"

@@ -162,13 +162,18 @@ def test_totals_read_back_from_the_csv_equal_those_of_the_analyses(tmp_path):
               (("t1", "9.04"), ("t2", "4.70"))]
     reproduced = [Reproduced("B", "t1", 5.98, "")]
     hyps = [d.Hypothesis("t1", "zeta / 10", "parameter slip", 9.05),
-            d.Hypothesis("t2", "zeta / 10", "parameter slip", 7.0)]
-    inv = [d.Inversion("t2", "zeta", 0.01, 0.0074, 0.001, 0.1, "solved")]
+            d.Hypothesis("t2", "zeta / 10", "parameter slip", 7.0),
+            d.Hypothesis("t2", "c / 10", "parameter slip", float("nan"))]   # never comes
+    inv = [d.Inversion("t2", "zeta", 0.01, 0.0074, 0.001, 0.1, "solved"),
+           d.Inversion("t2", "k", 1e4, float("nan"), 1e3, 1e5, "none")]
     ds = d.to_dataset({"t1": 5.98, "t2": 3.9}, hyps, inv, {"title": "t"})
     analyses = d.analyse(table, values, reproduced, [d.from_dataset(ds)])
     d.write_files(analyses, tmp_path / "d.csv", tmp_path / "d.md")
     with open(tmp_path / "d.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
     assert any(r["kind"] == "inversion" and r["reproduces"] == "True" for r in rows)
+    # no value: the cell is empty, as a missing relative error is, never 'nan'
+    assert [r["value"] for r in rows if r["hypothesis"] in ("c / 10", "k: no value in "
+                                                              "[1e+03, 1e+05]")] == ["", ""]
     assert d.totals_of_rows(rows) == d.totals(analyses)
     assert d.totals(analyses).startswith("discrepancies (2): 1 reproduced by a hypothesis, 1 ")

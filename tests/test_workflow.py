@@ -6,6 +6,7 @@ as a user would run it. The runs are shared with test_delivery.py and test_clust
 (tests/workflow_runs.py); their tests start first.
 """
 
+import csv
 import json
 import os
 import re
@@ -48,6 +49,17 @@ def test_reduced_run_builds_every_paper_c_result(run_dir):
     expected = {p["quantity"] for p in read_paper_values(ROOT / "data/paper_values.csv")}
     assert quantities == expected
     assert "FAIL" in (run_dir / "results/paper_c/tables/derivation_checks.csv").read_text()
+
+
+def test_no_row_prints_a_missing_number_as_nan(run_dir):
+    """A number that does not exist (a run that never balances, an undetermined margin) is
+    said in words or left empty in the comparison and the discrepancy analysis, never printed
+    as 'nan' (Fig 11's row said 'beta0.1 nan s')."""
+    cells = [cell for name in ("comparison.csv", "discrepancies.csv")
+             for row in csv.reader((run_dir / "results" / name).open(newline=""))
+             for cell in row]
+    assert len(cells) > 1000
+    assert [cell for cell in cells if re.search(r"\bnan\b", cell, re.I)] == []
 
 
 def test_table2_peak_forces_match_the_paper(run_dir):

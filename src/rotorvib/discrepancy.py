@@ -370,18 +370,24 @@ TABLE_COLUMNS = ("paper", "quantity", "verdict", "printed", "kind", "hypothesis"
                  "rel_error", "reproduces")
 
 
+def _finite(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
 def table_rows(analyses: list[Analysis]) -> list[dict]:
     """One row per hypothesis and per inversion (kind ``inversion``: ``value`` is the
-    parameter value that reproduces the printed number)."""
+    parameter value that reproduces the printed number); a value that does not exist (a
+    hypothesis under which the quantity never comes, an inversion without a solution) is
+    none, an empty cell."""
     rows = []
     for a in analyses:
         head = {"paper": a.paper, "quantity": a.quantity, "verdict": a.verdict,
                 "printed": a.printed}
-        rows += [{**head, "kind": h.kind, "hypothesis": h.name, "value": h.value,
+        rows += [{**head, "kind": h.kind, "hypothesis": h.name, "value": _finite(h.value),
                   "rel_error": relative_error(a.printed, h.value) if math.isfinite(h.value)
                   else None, "reproduces": reproduces(a.printed, h.value)}
                  for h in a.hypotheses]
-        rows += [{**head, "kind": "inversion", "hypothesis": i.text(), "value": i.needed,
+        rows += [{**head, "kind": "inversion", "hypothesis": i.text(), "value": _finite(i.needed),
                   "rel_error": None, "reproduces": i.status == "solved"} for i in a.inversions]
     return rows
 

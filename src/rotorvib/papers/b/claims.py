@@ -18,7 +18,8 @@ import xarray as xr
 from rotorvib.comparison import Margin, Reproduced, merge_variants
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.curves import (as_longest, dip_depth, faster_share, mean_over_ics,
-                                      largest_fall, rise, share_balanced_by, timed, within)
+                                      largest_fall, rise, seconds_text, share_balanced_by,
+                                      timed, within)
 from rotorvib.papers.b.row_values import (optimum_lead, reduction, runup_end,
                                          table1_at_paper_speeds)
 
@@ -241,7 +242,7 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
         rows.append(_row(f"table1_m_opt_{s}", r["m_opt_kg"], note))
         rows.append(_row(f"table1_mean_time_{s}", r["mean_balance_time_s"],
                          note + f"; by the envelope through the peaks of r(t) the mean is "
-                         f"{r['mean_envelope_time_s']:.2f} s"))
+                         f"{seconds_text(r['mean_envelope_time_s'])}"))
     rows = table1_at_paper_speeds(rows, paper)
     t2 = table2_rows(forces, R, kin)
     for r in t2:
@@ -251,7 +252,7 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
         rows.append(_row(f"table2_decay_{r['row']}", r["force_decay_time_s"],
                          f"time after which F stays below k x r_threshold (the force of the balance "
                          f"criterion; the paper does not define its decay time); threshold "
-                         f"balance time {r['balance_time_s']:.2f} s"))
+                         f"balance time {seconds_text(r['balance_time_s'])}"))
     f_red = reduction(t2[-1]["force_max_N"], t2[0]["force_max_N"])
     t_red = reduction(t2[-1]["force_decay_time_s"], t2[0]["force_decay_time_s"])
     printed_f = 100 * (1 - paper["table2_fmax_3"] / paper["table2_fmax_1"])
@@ -271,8 +272,7 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
                               "decay times to the integration's accuracy"),
                      "peak forces "
                      + ", ".join(f"{r['force_max_N']:.1f} N" for r in t2) + "; decay times "
-                     + ", ".join(f"{r['force_decay_time_s']:.2f} s"
-                                 if np.isfinite(r["force_decay_time_s"]) else "none by t_end"
+                     + ", ".join(seconds_text(r["force_decay_time_s"], "none by t_end")
                                  for r in t2)))
     return rows
 
@@ -318,7 +318,7 @@ def response_rows(tr: xr.Dataset, kin: str, r_threshold: float,
             lead = float(np.min(longest[1:]) - longest[0])
         rows.append(_claim(quantity, timed(lead, time_uncertainty),
                            "balance times "
-                         + ", ".join(f"{n.split('_', 1)[1]} {v:.2f} s" for n, v in
+                         + ", ".join(f"{n.split('_', 1)[1]} {seconds_text(v)}" for n, v in
                                      zip(runs, times))))
     return rows
 

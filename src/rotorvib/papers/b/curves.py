@@ -19,6 +19,12 @@ def timed(value: float, uncertainty: float) -> Margin:
                                            "(paper_b.claims.time_uncertainty)")
 
 
+def seconds_text(seconds: float, never: str = "not balanced by t_end") -> str:
+    """A time for a row's text: ``4.90 s``, or ``never`` for a censored run (NaN), which is no
+    number of seconds."""
+    return f"{seconds:.2f} s" if np.isfinite(seconds) else never
+
+
 def as_longest(times) -> np.ndarray:
     """Balance times with a censored run (NaN: not balanced by t_end) as +inf, longer than any
     balanced one, so that orderings stay defined."""
