@@ -1,5 +1,6 @@
 """Shared fixtures: paper C's rotor and Table 2 from the repository's configuration."""
 
+import os
 from functools import cache
 from pathlib import Path
 
@@ -14,13 +15,19 @@ ROOT = Path(__file__).resolve().parents[1]
 INTEGRATORS = "rotorvib.models.balancer.simulate"
 
 
+@pytest.hookimpl(tryfirst=True)     # before ``-m`` deselects by the markers added here
 def pytest_collection_modifyitems(items):
-    """test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), most of the
+    """A test that reads the reduced runs (its fixtures reach ``runs``) is a workflow test
+    (marker ``workflow``: ``pytest -m "not workflow"`` leaves it out with the runs it needs).
+    test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), most of the
     suite's time, on one pytest-xdist worker (pyproject.toml) while the other takes the library
     tests; the other files that read the runs last, so that whichever worker is free then takes
     them once the runs exist. Among the library tests, the files that can run the balancer's
     compiled integrators (their imports reach them) come after the others: the first worker
     compiles them for the runs meanwhile, and the second would wait on the compile lock."""
+    for item in items:
+        if "runs" in item.fixturenames:
+            item.add_marker(pytest.mark.workflow)
     @cache
     def runs_integrators(path):
         return INTEGRATORS in import_closure(path, root=ROOT / "src")
@@ -42,6 +49,17 @@ def runs(tmp_path_factory, worker_id) -> list[Path]:
 
     root = tmp_path_factory.getbasetemp()
     return shared_runs(root if worker_id == "master" else root.parent)
+
+
+@pytest.fixture(scope="session")
+def snakemake_here():
+    """Dry runs of Snakemake in the repository, each a child of one prepared process
+    (tests/forked_snakemake.py: as a fresh ``snakemake`` command answers, for a start-up's
+    cost once)."""
+    from forked_snakemake import ForkedSnakemake
+
+    with ForkedSnakemake(ROOT, dict(os.environ)) as command:
+        yield command
 
 
 @pytest.fixture(scope="session")

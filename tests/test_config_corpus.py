@@ -4,8 +4,6 @@ before the DAG is built)."""
 
 import copy
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -262,12 +260,10 @@ def test_exponent_notation_is_a_number(tmp_path):
      "max: 1.0e+6, n: 3}\n      fixed: {beta: 0.3, mass: 0.01, eps_bar: 0.012}\n",
      "'paper_b.balance_studies.fast': with"),
 ])
-def test_snakemake_stops_before_any_job(tmp_path, text, named):
+def test_snakemake_stops_before_any_job(tmp_path, text, named, snakemake_here):
     bad = tmp_path / "bad.yaml"
     bad.write_text(text)
-    run = subprocess.run([str(Path(sys.executable).parent / "snakemake"), "-n", "--configfile",
-                          "config/config.yaml", str(bad)], cwd=ROOT, capture_output=True,
-                         text=True)
+    run = snakemake_here("-n", "--configfile", "config/config.yaml", str(bad))
     assert run.returncode != 0
     assert named in run.stdout + run.stderr
     assert "Job " not in run.stdout

@@ -3,8 +3,6 @@ cites them, no typed timing."""
 
 import re
 import shlex
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -17,7 +15,6 @@ from rotorvib.papers.c.studies import REFERENCE as C
 from rotorvib.pipeline.config import load_yaml
 
 README = (ROOT / "README.md").read_text()
-BIN = Path(sys.executable).parent
 
 
 def test_the_readme_reads_in_five_minutes():
@@ -52,15 +49,14 @@ def _snakemake_commands() -> list[list[str]]:
 
 
 @pytest.mark.parametrize("words", _snakemake_commands(), ids=" ".join)
-def test_each_readme_snakemake_command_is_accepted(words, tmp_path):
+def test_each_readme_snakemake_command_is_accepted(words, tmp_path, snakemake_here):
     """Each snakemake command of the README is accepted as written (a dry run; the tests run
     the workflow, the report, the archive and the SLURM profile for real), ``my.yaml`` being
     the override file the README writes."""
     override = tmp_path / "my.yaml"
     override.write_text("paper_c:\n  den_hartog:\n    d: 0.09\n")
     words = [str(override) if w == "my.yaml" else w for w in words]
-    run = subprocess.run([str(BIN / "snakemake"), *words[1:], "-n"], cwd=ROOT,
-                         capture_output=True, text=True, timeout=300)
+    run = snakemake_here(*words[1:], "-n")
     assert run.returncode == 0, run.stdout + run.stderr
 
 
@@ -74,7 +70,7 @@ def test_every_dataset_cites_its_paper_as_data_papers_yaml_does():
     assert "Journal" not in C and "Modares Mechanical Engineering 14(3)" in B
 
 
-def test_the_workflow_catalog_usage_runs():
+def test_the_workflow_catalog_usage_runs(snakemake_here):
     """.snakemake-workflow-catalog.yml: no conda or container deployment (environment.txt
     installs the project itself), a report, and its mandatory flags give a workflow that a dry
     run accepts."""
@@ -82,8 +78,7 @@ def test_the_workflow_catalog_usage_runs():
     assert catalog["report"] is True
     assert not any(catalog["software-stack-deployment"].values())
     flags = shlex.split(catalog["mandatory-flags"]["flags"])
-    run = subprocess.run([str(BIN / "snakemake"), "-n", *flags], cwd=ROOT, capture_output=True,
-                         text=True, timeout=300)
+    run = snakemake_here("-n", *flags)
     assert run.returncode == 0, run.stdout + run.stderr
     assert (ROOT / "config/README.md").is_file()
 

@@ -108,7 +108,6 @@ def test_a_replay_never_computes_a_run_no_shard_made():
         ReplayedRuns([pieces[0], other])
 
 
-@pytest.mark.workflow
 def test_the_sharded_run_made_each_study_in_shards(runs, tmp_path):
     """The reduced run with every study in three shards (tests/workflow_runs.py; its results
     equal the unsharded run's byte for byte, test_workflow.py): each study three shard jobs and
