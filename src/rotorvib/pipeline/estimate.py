@@ -175,9 +175,11 @@ def benchmark_cpu(folder: Path) -> float:
     return total
 
 
-def counting_pass(root: Path, configfiles: list[str], cores: int, results: str) -> Path:
-    """Build the paper B datasets of the workflow in ``root`` into ``results`` (relative to
-    it), every job with a run counter; return that scratch folder."""
+def counting_pass(root: Path, configfiles: list[str], cores: int, results: str,
+                  datasets: list[str] | None = None) -> Path:
+    """Build the paper B datasets of the workflow in ``root`` (or those named ``datasets``)
+    into ``results`` (relative to it), every job with a run counter; return that scratch
+    folder."""
     folder = root / results
     if folder.exists():
         shutil.rmtree(folder)
@@ -190,7 +192,9 @@ def counting_pass(root: Path, configfiles: list[str], cores: int, results: str) 
     command = [sys.executable, "-m", "snakemake", f"--cores={cores}", "--nolock", "--quiet",
                "--configfile", "config/config.yaml", *configfiles,
                f"{results}/one_shard.yaml", "--config",
-               f"results={results}", "--omit-from", "b_reproduced_values", "--", "b_datasets"]
+               f"results={results}", "--omit-from", "b_reproduced_values", "--",
+               *([f"{results}/paper_b/datasets/{name}.nc" for name in datasets] if datasets
+                 else ["b_datasets"])]
     hook = folder / "hook"
     hook.mkdir()
     (hook / "sitecustomize.py").write_text(HOOK)
