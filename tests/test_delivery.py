@@ -2,21 +2,25 @@
 real browser (headless Chromium), and the archive, its RO-Crate (rocrate-validator) and its
 restoration without recomputation."""
 
+import base64
 import csv
 import html
+import json
 import re
 import tarfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
+import yaml
 
 import report_browser
 from conftest import ROOT
 from ro_crate import validate_crate
 from rotorvib.pipeline.report import numbers_of_item, numbers_of_name
-from rotorvib.pipeline.archive import verify_archive
-from workflow_runs import REDUCED, copy_repository, copy_run, planned_jobs, snakemake
+from rotorvib.pipeline.archive import METADATA_DIR, verify_archive
+from workflow_runs import (REDUCED, REDUCED_SHARDED, copy_repository, copy_run, job_records,
+                           planned_jobs, snakemake)
 
 pytestmark = pytest.mark.workflow
 
@@ -133,16 +137,41 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
         "The Root Data Entity SHOULD have a `publisher` property (Organization or Person)"]
 
 
-def test_two_builds_of_one_commit_give_the_same_archive(runs, tmp_path):
-    """The session's two independent runs (same commit and configuration, jobs run at
-    different times) each pack their archive: the two are the same byte for byte, job
-    records included (their run times left out)."""
+def _members(archive: Path) -> dict[str, bytes]:
+    with tarfile.open(archive) as tar:
+        return {m.name: tar.extractfile(m).read() for m in tar.getmembers() if m.isfile()}
+
+
+def test_two_runs_pack_the_same_archive_but_for_the_split(runs, tmp_path):
+    """The session's two independent runs (same commit, jobs run at different times, the
+    second with paper B's batch studies in three shards) each pack their archive. Every member
+    is the same byte for byte, job records included (their run times left out), but those that
+    say how the second was split: its configuration (paper_b.shards, and the file that sets
+    it), the records of the studies gathered from shards (their inputs), of the run's
+    configuration files (their parameters), and the crate, manifest and README that list
+    them."""
     archives = []
-    for i, run in enumerate(runs):
+    for i, (run, config) in enumerate(zip(runs, (REDUCED, REDUCED_SHARDED))):
         work = copy_run(run, tmp_path / f"build{i}")
-        snakemake(work, "-j2", "archive", *REDUCED)
-        archives.append((work / "results/archive/rotorvib-results.tar.gz").read_bytes())
-    with tarfile.open(tmp_path / "build0/results/archive/rotorvib-results.tar.gz") as tar:
-        records = [m for m in tar.getnames() if m.startswith(".snakemake/metadata/")]
+        snakemake(work, "-j2", "archive", *config)
+        archives.append(_members(work / "results/archive/rotorvib-results.tar.gz"))
+    one, split = archives
+    assert set(split) - set(one) == {REDUCED_SHARDED[-1]} and set(one) <= set(split)
+    records = {name for name in one if name.startswith(METADATA_DIR)}
     assert len(records) > 100
-    assert archives[0] == archives[1]
+    differ = {name for name in one if one[name] != split[name]}
+    assert differ - records == {"results/run/config.yaml", "ro-crate-metadata.json",
+                                "results/ARCHIVE_MANIFEST.sha256", "results/ARCHIVE_README.md"}
+    configs = [yaml.safe_load(members["results/run/config.yaml"]) for members in archives]
+    assert [c["paper_b"].pop("shards") for c in configs] == [1, 3] and configs[0] == configs[1]
+    changed = {}
+    for name in differ & records:
+        fields = [json.loads(members[name]) for members in archives]
+        path = base64.urlsafe_b64decode(name.rsplit("/", 1)[1]).decode()
+        changed[path] = {key for key in fields[0] if fields[0][key] != fields[1].get(key)}
+    gathered = {r["output"][0] for r in job_records(runs[1])
+                if any("/shards/" in f for f in r["input"])}
+    assert len(gathered) == 10
+    assert changed == {**{path: {"input", "input_checksums"} for path in gathered},
+                       "results/run/commit.txt": {"params"},
+                       "results/run/config.yaml": {"params"}}
