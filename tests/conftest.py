@@ -28,6 +28,7 @@ def pytest_collection_modifyitems(items):
     for item in items:
         if "runs" in item.fixturenames:
             item.add_marker(pytest.mark.workflow)
+
     @cache
     def runs_integrators(path):
         return INTEGRATORS in import_closure(path, root=ROOT / "src")

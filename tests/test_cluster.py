@@ -35,7 +35,7 @@ def slurm_cluster(tmp_path_factory):
 
 
 SLURM_PROFILE = ROOT / "workflow/profiles/slurm/config.yaml"
-#: The sharded study the cluster test rebuilds, its shards and the rule of each
+#: The sharded study the cluster test rebuilds, and its shards
 SHARDED_STUDY = "paper_b/datasets/balance_beta.nc"
 SHARDS = [f"paper_b/shards/balance_beta.{k}-of-3.nc" for k in range(3)]
 #: Datasets of papers A and C the cluster test rebuilds too, where Snakemake runs

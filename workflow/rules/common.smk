@@ -67,9 +67,9 @@ BESIDE_THE_COMPILE, LONGEST_CHAIN, COMPUTES = 3, 2, 1
 # Where a job runs under a cluster executor (workflow/profiles/slurm): where Snakemake runs
 # (`localrule: True`) unless it is a shard of one of paper B's batch studies, or its Pareto
 # study when those are sharded. A cluster job costs two Snakemake start-ups and a status check
-# (about 4 s of wall time a job on the one-node test cluster), more than most jobs take at the
-# paper's sizes (all but the GA under 25 s on one core): splitting a study over jobs
-# (paper_b.shards > 1) is what makes it worth a cluster, and the shards are what is sent.
+# (python -m benchmarks.cluster), more than most jobs take at the paper's sizes (python -m
+# benchmarks.pipeline): splitting a study over jobs (paper_b.shards > 1) is what makes it worth
+# a cluster, and the shards are what is sent.
 PAPER_VALUES = "data/paper_values.csv"
 REPORT_DIR = f"{RESULTS_DIR}/report"
 REPORT_LANDING = f"{REPORT_DIR}/landing.rst"
