@@ -10,10 +10,8 @@ import pytest
 import yaml
 
 from conftest import ROOT
+from test_layout import workflow_rules
 from workflow_runs import REDUCED_SHARDED, copy_run, digests, job_counts, job_records, snakemake
-
-pytestmark = pytest.mark.workflow
-
 
 CLUSTER = ROOT / "workflow/cluster/one-node-slurm"
 
@@ -40,31 +38,6 @@ SHARDED_STUDY = "paper_b/datasets/balance_beta.nc"
 SHARDS = [f"paper_b/shards/balance_beta.{k}-of-3.nc" for k in range(3)]
 #: Datasets of papers A and C the cluster test rebuilds too, where Snakemake runs
 OTHER_RULES = ("a_stability", "c_mass_ratio")
-RULE_HEAD = re.compile(r"^(?:rule (\w+):|use rule \w+ as (\w+) with:)\n((?:[ #].*\n|\n)*)", re.M)
-
-
-def rule_blocks() -> dict[str, str]:
-    """Every rule of the workflow (``rule X:`` and ``use rule ... as X with:``): its text."""
-    text = "\n".join(p.read_text() for p in sorted((ROOT / "workflow/rules").glob("*.smk")))
-    return {a or b: block for a, b, block in RULE_HEAD.findall(text + "\n")}
-
-
-def workflow_rules() -> set[str]:
-    """Every rule name of the workflow."""
-    return set(rule_blocks())
-
-
-def test_only_the_shards_of_batch_studies_are_cluster_jobs():
-    """The placement stated in workflow/rules/common.smk: every rule runs where Snakemake runs
-    but the shards of paper B's batch studies, and its Pareto study when those are sharded."""
-    blocks = rule_blocks()
-    placed = {name: re.findall(r"^    localrule: (.+)$", block, re.M)
-              for name, block in blocks.items()}
-    cluster = {name for name, local in placed.items() if not local}
-    assert cluster == {name for name in blocks if name.endswith("_shard")} and len(cluster) == 6
-    assert placed["b_pareto"] == ['B["shards"] == 1']
-    assert all(local == ["True"] for name, local in placed.items()
-               if name not in cluster | {"b_pareto"}), placed
 
 
 def submitted_jobs(log: str) -> dict[str, str]:
@@ -88,7 +61,8 @@ def test_the_shipped_slurm_profile_runs_on_a_real_cluster(runs, tmp_path, slurm_
     work = copy_run(runs[1], tmp_path / "work")
     before = digests(work)
     comparison = (work / "results/comparison.csv").read_bytes()
-    made = {r["rule"]: min(r["output"]) for r in sorted(job_records(work), key=lambda r: r["output"])
+    made = {r["rule"]: min(r["output"])
+            for r in sorted(job_records(work), key=lambda r: r["output"])
             if r["rule"] in OTHER_RULES}
     for path in [*made.values(), *(f"results/{name}" for name in [SHARDED_STUDY, *SHARDS]),
                  "results/comparison.csv"]:

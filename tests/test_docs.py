@@ -157,7 +157,7 @@ def test_the_outputs_table_names_every_result_and_real_rules(run_dir):
     """The user guide's table of where each paper item lands, against a reduced run (same
     outputs as the paper configuration): every dataset and figure the run made is in it, every
     path it gives exists, and every rule it names is a rule of the workflow."""
-    from test_cluster import workflow_rules
+    from test_layout import workflow_rules
 
     text = (DOCS / "user-guide.md").read_text()
     table = text.split("## Where each paper item lands", 1)[1].split("\n\n", 2)[1]

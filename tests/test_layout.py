@@ -53,10 +53,37 @@ def test_modules_stay_small(name):
     assert len(MODULES[name].read_text().splitlines()) <= 430
 
 
+RULE_FILES = sorted((SRC.parent / "workflow/rules").glob("*.smk"))
 RULES = {match.group(1): block
-         for path in sorted((SRC.parent / "workflow/rules").glob("*.smk"))
+         for path in RULE_FILES
          for block in path.read_text().split("\nrule ")[1:]
          if (match := re.match(r"(\w+):", block))}
+RULE_HEAD = re.compile(r"^(?:rule (\w+):|use rule \w+ as (\w+) with:)\n((?:[ #].*\n|\n)*)",
+                       re.M)
+
+
+def rule_blocks() -> dict[str, str]:
+    """Every rule of the workflow (``rule X:`` and ``use rule ... as X with:``): its text."""
+    text = "\n".join(path.read_text() for path in RULE_FILES)
+    return {a or b: block for a, b, block in RULE_HEAD.findall(text + "\n")}
+
+
+def workflow_rules() -> set[str]:
+    """Every rule name of the workflow."""
+    return set(rule_blocks())
+
+
+def test_only_the_shards_of_batch_studies_are_cluster_jobs():
+    """The placement stated in workflow/rules/common.smk: every rule runs where Snakemake runs
+    but the shards of paper B's batch studies, and its Pareto study when those are sharded."""
+    blocks = rule_blocks()
+    placed = {name: re.findall(r"^    localrule: (.+)$", block, re.M)
+              for name, block in blocks.items()}
+    cluster = {name for name, local in placed.items() if not local}
+    assert cluster == {name for name in blocks if name.endswith("_shard")} and len(cluster) == 6
+    assert placed["b_pareto"] == ['B["shards"] == 1']
+    assert all(local == ["True"] for name, local in placed.items()
+               if name not in cluster | {"b_pareto"}), placed
 
 
 def test_every_job_that_computes_starts_before_the_figures_and_tables():
