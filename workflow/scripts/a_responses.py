@@ -16,6 +16,6 @@ try:
     ds = responses_dataset(p.case, p.offset, betas, p.tau_end, p.tau_step, p.rk)
 except ConstantsDiverged as error:   # found by tests/schema_fuzz.py: an offset too far out
     sys.exit(f"config key 'paper_a.initial_offset': {error}, under paper_a.case and "
-             f"paper_a.fig5_6.betas; a smaller offset brings the two-term constants (eq. 39) "
+             "paper_a.fig5_6.betas; a smaller offset brings the two-term constants (eq. 39) "
              "within the expansion's reach (how small depends on the case)")
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))
