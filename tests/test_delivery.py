@@ -149,12 +149,16 @@ def test_two_runs_pack_the_same_archive_but_for_the_split(runs, tmp_path):
     say how the second was split: its configuration (paper_b.shards, and the file that sets
     it), the records of the studies gathered from shards (their inputs), of the run's
     configuration files (their parameters), and the crate, manifest and README that list
-    them."""
+    them. The first, packed again later, is the same file byte for byte."""
     archives = []
     for i, (run, config) in enumerate(zip(runs, (REDUCED, REDUCED_SHARDED))):
         work = copy_run(run, tmp_path / f"build{i}")
         snakemake(work, "-j2", "archive", *config)
         archives.append(_members(work / "results/archive/rotorvib-results.tar.gz"))
+    packed = tmp_path / "build0/results/archive/rotorvib-results.tar.gz"
+    first = packed.read_bytes()
+    again = snakemake(tmp_path / "build0", "-j1", "-f", "archive", *REDUCED)
+    assert planned_jobs(again) == {"archive"} and packed.read_bytes() == first
     one, split = archives
     assert set(split) - set(one) == {REDUCED_SHARDED[-1]} and set(one) <= set(split)
     records = {name for name in one if name.startswith(METADATA_DIR)}

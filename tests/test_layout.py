@@ -53,19 +53,18 @@ def test_modules_stay_small(name):
     assert len(MODULES[name].read_text().splitlines()) <= 430
 
 
-RULE_FILES = sorted((SRC.parent / "workflow/rules").glob("*.smk"))
-RULES = {match.group(1): block
-         for path in RULE_FILES
-         for block in path.read_text().split("\nrule ")[1:]
-         if (match := re.match(r"(\w+):", block))}
 RULE_HEAD = re.compile(r"^(?:rule (\w+):|use rule \w+ as (\w+) with:)\n((?:[ #].*\n|\n)*)",
                        re.M)
+#: Every rule of the workflow: (name, its text, whether written ``rule NAME:`` rather than
+#: ``use rule ... as NAME with:``, which inherits what it does not change)
+RULE_BLOCKS = [(a or b, block, bool(a)) for a, b, block in RULE_HEAD.findall(
+    "\n".join(p.read_text() for p in sorted((SRC.parent / "workflow/rules").glob("*.smk")))
+    + "\n")]
 
 
 def rule_blocks() -> dict[str, str]:
     """Every rule of the workflow (``rule X:`` and ``use rule ... as X with:``): its text."""
-    text = "\n".join(path.read_text() for path in RULE_FILES)
-    return {a or b: block for a, b, block in RULE_HEAD.findall(text + "\n")}
+    return {name: block for name, block, _ in RULE_BLOCKS}
 
 
 def workflow_rules() -> set[str]:
@@ -90,9 +89,10 @@ def test_every_job_that_computes_starts_before_the_figures_and_tables():
     """Long jobs first (workflow/rules/common.smk): a rule whose CPU is measured (``benchmark:``:
     it computes a dataset or a check) declares a priority; one without (it draws or tabulates)
     only if it is on the longest chain."""
-    assert len(RULES) > 20
-    for name, block in RULES.items():
-        if "benchmark:" in block.split("\nuse rule ")[0]:
+    written = {name: block for name, block, own in RULE_BLOCKS if own}
+    assert len(written) > 20
+    for name, block in written.items():
+        if "benchmark:" in block:
             assert "priority:" in block, name
         else:
             assert "priority:" not in block or "priority: LONGEST_CHAIN" in block, name
