@@ -10,11 +10,18 @@ moves everything the imports made into the permanent generation (:func:`gc.freez
 later collection scans, the one at exit included, then switches the collector on for the job's
 own work. ``python -m benchmarks.job_start`` measures what this saves a job that imports the
 engine, xarray and matplotlib.
+
+Before that, a job that the server of its Snakemake run can run (rotorvib.pipeline.warm_start:
+a process that has imported those libraries already) is handed over to it, and this process
+only waits for its exit status.
 """
 
 import gc
 import sys
 
+from rotorvib.pipeline.warm_start import hand_over
+
+hand_over()       # returns when this process is to run the job itself
 gc.disable()
 
 
