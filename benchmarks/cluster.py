@@ -3,9 +3,8 @@ profile (``workflow/profiles/slurm``) against ``snakemake -j2`` on this machine,
 other; with ``--shards N`` also both ways with paper B's batch studies in N shards each, whose
 shards the profile sends to SLURM.
 
-Each case runs from scratch into its own results folder (``results/cluster_bench/<case>``),
-with the compiled engine's cache of the working tree (run the workflow or the tests once first,
-so that no case compiles it). It prints each case's wall time, the jobs it sent to SLURM (from
+Each case runs from scratch into its own results folder (``results/cluster_bench/<case>``,
+benchmarks.reduced). It prints each case's wall time, the jobs it sent to SLURM (from
 the executor plugin's log) and the ratio of the two ways. It needs a SLURM cluster
 (``SLURM_CONF``; ``workflow/cluster/one-node-slurm`` makes one on this machine). Run from the
 repository root:
@@ -21,32 +20,20 @@ import argparse
 import os
 import re
 import shutil
-import subprocess
 import sys
-import time
 from pathlib import Path
 
+from benchmarks.reduced import run_reduced
+
 FOLDER = Path("results/cluster_bench")
-REDUCED = ["config/config.yaml", "config/test/config.yaml"]
 WAYS = {"local": ["-j2"], "slurm": ["--workflow-profile", "workflow/profiles/slurm"]}
 
 
 def run_case(name: str, way: str, shards: int) -> tuple[float, int]:
     """The reduced workflow from scratch, ``way`` ("local" or "slurm") with ``shards`` shards a
     batch study: its wall time (s) and the jobs it sent to SLURM."""
-    results = FOLDER / name
-    shutil.rmtree(results, ignore_errors=True)
-    results.mkdir(parents=True)
-    config = FOLDER / f"{name}.yaml"
-    config.write_text(f"results: {results}\npaper_b:\n  shards: {shards}\n")
-    command = [str(Path(sys.executable).parent / "snakemake"), *WAYS[way],
-               "--configfile", *REDUCED, str(config)]
-    start = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, text=True)
-    wall = time.perf_counter() - start
-    if done.returncode:
-        sys.exit(f"{' '.join(command)} failed:\n{done.stdout[-3000:]}{done.stderr[-3000:]}")
-    return wall, len(re.findall(r"submitted with SLURM jobid", done.stdout + done.stderr))
+    run = run_reduced(FOLDER, name, WAYS[way], shards)
+    return run.wall, len(re.findall(r"submitted with SLURM jobid", run.output))
 
 
 def main() -> None:

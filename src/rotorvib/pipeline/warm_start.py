@@ -10,9 +10,10 @@ standard streams, working directory, environment, arguments and script to it
 script), and the server forks a child that runs the script as that process would have, then
 hands the child's exit status back; the client exits with it.
 
-What the server holds is learnt, not listed: after each child exits, the server imports the
-installed libraries the child loaded (modules in Python's installation or environment), so the
-jobs that follow find them loaded.  Nothing of the workflow's own code (``rotorvib``, the
+What the server holds is learnt, not listed: when a job comes, the server first imports the
+installed libraries the children that have ended loaded (modules in Python's installation or
+environment), so that this job and those that follow find them loaded (a command of one job
+imports nothing twice).  Nothing of the workflow's own code (``rotorvib``, the
 scripts) is ever loaded in the server: each child imports it afresh, as a new process would,
 and an edited module is read as it now is.
 
@@ -171,6 +172,7 @@ def serve(path: str) -> None:
     listener.bind(path)
     listener.listen(16)
     clients: dict[int, tuple[socket.socket, str]] = {}
+    learnt: list[str] = []      # what the ended children loaded, imported for the next job
     try:
         while True:
             ready = select.select([listener, sys.stdin, wake_read], [], [])[0]
@@ -178,11 +180,13 @@ def serve(path: str) -> None:
                 break
             if wake_read in ready:
                 os.read(wake_read, 512)
-                for conn, learnt in _reaped(clients):
+                for conn, modules in _reaped(clients):
                     conn.close()
-                    _learn(learnt)
+                    learnt.append(modules)
             if listener in ready:
                 conn = listener.accept()[0]
+                while learnt:
+                    _learn(learnt.pop())
                 pid = _fork_job(conn, listener, path)
                 if pid is not None:
                     clients[pid] = (conn, _learnt_file(path, pid))
