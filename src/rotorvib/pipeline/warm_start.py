@@ -60,7 +60,10 @@ _FORKED = b"F"
 def hand_over() -> None:
     """Have this job run by the server of its Snakemake run and exit with the status of that
     run; return at once (the job then runs here) when no server serves it. The job is the
-    script Snakemake runs as ``__main__`` (its ``snakemake`` object, its ``__real_file__``)."""
+    script Snakemake runs as ``__main__``: its ``snakemake`` object (whose ``bench_iteration``
+    is None unless the rule has a ``benchmark:``; tests/test_workflow.py checks that reading
+    against the rule files on the pinned Snakemake) and its ``__real_file__``, the script file
+    Snakemake wrote."""
     main = sys.modules["__main__"]
     job = getattr(main, "snakemake", None)
     if job is None or getattr(job, "bench_iteration", None) is not None or _SERVED in os.environ:
@@ -68,10 +71,11 @@ def hand_over() -> None:
     path, _, owner = os.environ.get(ADDRESS, "").rpartition(":")
     if not path or not owner.isdigit() or not _descends_from(int(owner)):
         return
+    conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     try:
-        conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         conn.connect(path)
     except OSError:
+        conn.close()
         return
     request = {"file": main.__real_file__, "argv": sys.argv, "cwd": os.getcwd(),
                "env": dict(os.environ), "path": sys.path, "umask": _umask()}
