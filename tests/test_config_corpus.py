@@ -127,6 +127,11 @@ CASES = [
     ("paper_b.balance.integrator.rtol", 1e-14, "paper_b.balance.integrator.rtol"),
     ("paper_a.rk.rtol", 2e-14, None), ("paper_c.time_response.rtol", 1e-14, None),
     ("paper_b.stability_maps.fig3.m_bar.n", 1, None),
+    # more run-ups than a job holds (1.8e6 here: 4.6 GB measured); sharding does not split them
+    ("paper_b.balance_studies.mass.range", {"min": 0.006, "max": 0.02, "n": 100000},
+     "paper_b.balance_studies.mass.range.n"),
+    ("paper_b.table1.mass", {"min": 0.006, "max": 0.02, "n": 30000}, "paper_b.table1.mass.n"),
+    ("paper_b.basin.n", 720, None),
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),

@@ -6,6 +6,8 @@ compiled engine."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from rotorvib.checks import sobol_design_problem
@@ -24,6 +26,37 @@ def study_problem(study: dict) -> str | None:
     if missing:
         return f"parameter(s) {missing} missing: give them in 'fixed' or 'each'"
     return None
+
+
+#: Chosen: the most run-ups one grid study of paper B may ask for. Every job of a study (each
+#: shard, and the job that gathers them) builds the inputs of all its run-ups, about 1 KB each
+#: (measured with tracemalloc), beside their metrics: a million is a gigabyte or two in one job,
+#: and some 20 CPU-minutes (a run-up takes about a millisecond).
+MAX_STUDY_RUNS = 1_000_000
+
+
+def study_size_problems(b: dict) -> list[str]:
+    """The grid studies of paper B that ask for more run-ups than :data:`MAX_STUDY_RUNS`, each
+    named by the key of its grid with the largest value it allows there: a balance study (its
+    points x its ``each`` values x the initial conditions x the kinematics), Table 1's (masses
+    x speeds x initial conditions x kinematics) and the basin map (n^2 starting positions x
+    cases x kinematics, every one of them held although half are run)."""
+    conditions = len(b["initial_conditions"]) * len(b["kinematics"])
+    grids = {f"paper_b.balance_studies.{name}.range.n":
+             (study["range"]["n"], 1, conditions * math.prod(
+                 np.size(values) for values in study.get("each", {}).values()))
+             for name, study in b["balance_studies"].items()}
+    grids["paper_b.table1.mass.n"] = (b["table1"]["mass"]["n"], 1,
+                                      conditions * len(b["table1"]["speeds"]))
+    grids["paper_b.basin.n"] = (b["basin"]["n"], 2, len(b["basin"]["cases"]) * len(b["kinematics"]))
+    problems = []
+    for key, (n, power, times) in grids.items():
+        if (runs := n ** power * times) > MAX_STUDY_RUNS:
+            allowed = math.floor((MAX_STUDY_RUNS / times) ** (1 / power))
+            problems.append(f"config key '{key}': {n} makes {runs} run-ups of its study, more "
+                            f"than {MAX_STUDY_RUNS} (every job of a study holds them all; "
+                            f"paper_b.shards does not split that): at most {allowed} here")
+    return problems
 
 
 def given_values(study: dict) -> dict:
@@ -206,7 +239,7 @@ def problems(config: dict) -> list[str]:
     cannot start, a GA-optimum study with nothing to fit, a Fig 6 claim about a curve the
     mass-ratio family does not draw, a distance offset through the disk centre, a ROSS speed
     of zero, a tolerance finer than double precision, a stability map of one point along an
-    axis."""
+    axis, a grid study of more run-ups than a job can hold."""
     b = config["paper_b"]
     found = [f"config key 'paper_b.balance_studies.{name}': {problem}"
              for name, study in b["balance_studies"].items()
@@ -221,7 +254,8 @@ def problems(config: dict) -> list[str]:
         if ga["seed"] in ga["spread_seeds"]:
             found.append(f"config key '{key}.spread_seeds': must not contain {key}.seed "
                          f"({ga['seed']}), whose result it would count twice")
-    return (found + existence_problems(b) + run_budget_problems(b) + boundary_problems(b)
+    return (found + existence_problems(b) + run_budget_problems(b) + study_size_problems(b)
+            + boundary_problems(b)
             + ga_law_problems(b) + fig6_problems(config["paper_c"])
             + distance_problems(config["paper_c"]) + ross_problems(b)
             + tolerance_problems(config) + map_problems(b))
