@@ -53,12 +53,13 @@ def running(pid) -> bool:
         return False
 
 
-def job(tmp_path: Path, body: str, *args: str, bench=None, env=None):
+def job(tmp_path: Path, body: str, *args: str, bench=None, env=None, stdin=None):
     """Run ``body`` as a script job (``served`` says whether the server ran it)."""
     script = tmp_path / "job.py"
     script.write_text(PREAMBLE.format(bench=bench) + body)
     return subprocess.run([sys.executable, str(script), *args], cwd=tmp_path, text=True,
-                          capture_output=True, env={**os.environ, **(env or {})}, timeout=60)
+                          input=stdin, capture_output=True, env={**os.environ, **(env or {})},
+                          timeout=60)
 
 
 WORK = """\
@@ -77,16 +78,12 @@ def test_a_served_job_runs_and_ends_as_its_own_process(server, tmp_path, monkeyp
                                                        code, said):
     """Folder, arguments, environment, standard input and output, exit status and an uncaught
     exception's traceback (from the script's line on) are those of the job's own process."""
-    body = WORK + ending + "\n"
     runs = {}
     for case in ("served", "own"):
         if case == "own":
             monkeypatch.delenv(warm_start.ADDRESS)
-        script = tmp_path / "job.py"
-        script.write_text(PREAMBLE.format(bench=None) + body)
-        runs[case] = subprocess.run([sys.executable, str(script), "a", "b c"], cwd=tmp_path,
-                                    input="from stdin", text=True, capture_output=True,
-                                    env={**os.environ, "GIVEN": "given"}, timeout=60)
+        runs[case] = job(tmp_path, WORK + ending + "\n", "a", "b c", env={"GIVEN": "given"},
+                         stdin="from stdin")
     assert runs["served"].stdout == f"True {tmp_path} ['a', 'b c'] given from stdin\n"
     assert runs["own"].stdout == runs["served"].stdout.replace("True", "False", 1)
     assert runs["served"].returncode == runs["own"].returncode == code

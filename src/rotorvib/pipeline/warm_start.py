@@ -143,13 +143,11 @@ class Server:
 
     def __init__(self):
         self.process: subprocess.Popen | None = None
-        self.folder: str | None = None
 
     def start(self) -> None:
         if DISABLE in os.environ or self.process is not None:
             return
-        self.folder = tempfile.mkdtemp(prefix="rotorvib-warm-")
-        path = os.path.join(self.folder, "socket")
+        path = os.path.join(tempfile.mkdtemp(prefix="rotorvib-warm-"), "socket")  # mode 700
         self.process = subprocess.Popen(
             [sys.executable, "-m", __name__, path],
             stdin=subprocess.PIPE, start_new_session=True)
