@@ -27,13 +27,14 @@ class Run:
 
 
 def run_reduced(folder: Path, name: str, options: list[str], shards: int = 1,
-                env: dict[str, str] | None = None) -> Run:
-    """``snakemake <options>`` on the reduced configuration from scratch, into
-    ``folder/name``, with paper B's batch studies in ``shards`` shards and environment ``env``;
-    exits naming the command when it fails."""
+                env: dict[str, str] | None = None, fresh: bool = True) -> Run:
+    """``snakemake <options>`` on the reduced configuration into ``folder/name`` (from scratch,
+    or, not ``fresh``, on what a run there left), with paper B's batch studies in ``shards``
+    shards and environment ``env``; exits naming the command when it fails."""
     results = folder / name
-    shutil.rmtree(results, ignore_errors=True)
-    results.mkdir(parents=True)
+    if fresh:
+        shutil.rmtree(results, ignore_errors=True)
+        results.mkdir(parents=True)
     config = folder / f"{name}.yaml"
     config.write_text(f"results: {results}\npaper_b:\n  shards: {shards}\n")
     command = [str(Path(sys.executable).parent / "snakemake"), *options,
