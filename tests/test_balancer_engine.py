@@ -1,6 +1,10 @@
 """The ball-balancer engine against scipy, against paper B's printed polar equations, across
 kinematic conventions and across the fixed and rotating frames."""
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from numba import njit
@@ -10,6 +14,7 @@ from rotorvib.models.balancer import dop853, engine, settling, simulate
 from rotorvib.models.balancer.borrowed import borrowed
 from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
                                                  fixed_parameters, fixed_state, rotating_parameters)
+from conftest import ROOT
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
 from rotorvib.methods.integrate import IntegrationError
 from rotorvib.models.balancer.simulate import (MAX_STEPS, BalanceCriterion, check_batch, run,
@@ -293,6 +298,22 @@ def test_dop853_sums_written_out_equal_the_full_tableau_sums_to_the_bit():
     for r in range(4):
         np.testing.assert_array_equal([dop853._dense_weighted(D[r], K, j) for j in range(8)],
                                       full(D[r], 16))
+
+
+def test_the_tableau_is_scipys_read_without_importing_scipy_integrate():
+    """dop853.tableau runs scipy's file of DOP853's coefficients on its own: the arrays are
+    those of ``scipy.integrate._ivp.dop853_coefficients`` (fails if the pinned scipy moves or
+    changes them), and a process that reads them has not imported ``scipy.integrate``."""
+    from scipy.integrate._ivp import dop853_coefficients as c
+
+    for ours, theirs in zip(dop853.tableau(), (c.A, c.B, c.C, c.E3, c.E5, c.D)):
+        np.testing.assert_array_equal(ours, theirs)
+        assert ours.flags.c_contiguous and ours.dtype == float
+    fresh = subprocess.run(
+        [sys.executable, "-c", "import sys\nfrom rotorvib.models.balancer import dop853\n"
+         "print(len(dop853.tableau()), 'scipy.integrate' in sys.modules)"],
+        capture_output=True, text=True, check=True, env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+    assert fresh.stdout == "6 False\n"
 
 
 def test_a_borrowed_view_aliases_its_array_and_holds_no_reference():

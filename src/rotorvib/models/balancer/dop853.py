@@ -2,13 +2,15 @@
 of order 8, error estimators of orders 5 and 3, FSAL, and a dense output of order 7 from three
 more stages, feeding the same in-loop analysers as the engine's DOPRI5.
 
-Its tableau is scipy's (``scipy.integrate._ivp.dop853_coefficients``), loaded only when asked
-for and passed to the compiled integrator as arrays.
+Its tableau is scipy's (``scipy/integrate/_ivp/dop853_coefficients.py``), loaded only when
+asked for and passed to the compiled integrator as arrays.
 """
 
 from __future__ import annotations
 
+import importlib.util
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 from numba import njit
@@ -28,9 +30,14 @@ _N853, _N853_DENSE = 12, 16
 @lru_cache(maxsize=1)
 def tableau() -> tuple:
     """``(A, B, C, E3, E5, D)`` of DOP853 as contiguous float arrays (DOPRI5's coefficients are
-    compiled in)."""
-    from scipy.integrate._ivp import dop853_coefficients as c
-
+    compiled in), from scipy's file of them run on its own: importing it by name would first
+    run ``scipy.integrate``'s ``__init__`` (every solver, quadrature rule and boundary-value
+    method, about a third of a CPU-second of each job that runs the engine)."""
+    scipy = Path(importlib.util.find_spec("scipy").origin).parent
+    spec = importlib.util.spec_from_file_location(
+        "rotorvib_dop853_coefficients", scipy / "integrate/_ivp/dop853_coefficients.py")
+    c = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(c)
     return tuple(np.ascontiguousarray(x, dtype=float) for x in (c.A, c.B, c.C, c.E3, c.E5, c.D))
 
 
