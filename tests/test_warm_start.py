@@ -12,6 +12,7 @@ import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -156,3 +157,24 @@ def test_the_server_ends_with_the_process_that_started_it(tmp_path):
     while (folder.exists() or running(pid)) and time.monotonic() < deadline:
         time.sleep(0.01)
     assert not folder.exists() and not running(pid)
+
+
+
+def test_a_socket_path_too_long_is_said_and_every_job_runs_in_its_own_process(tmp_path,
+                                                                              monkeypatch, capfd):
+    """A Unix socket's path holds at most 107 bytes: under a deep TMPDIR the server says so in
+    one line and ends by itself, leaving nothing behind; the jobs run in their own processes."""
+    deep = tmp_path / ("d" * 60) / ("e" * 60)
+    deep.mkdir(parents=True)
+    monkeypatch.setenv("TMPDIR", str(deep))
+    monkeypatch.setattr(tempfile, "tempdir", None)      # read TMPDIR again
+    monkeypatch.setenv("PYTHONPATH", str(ROOT / "src"))
+    monkeypatch.delenv(warm_start.DISABLE, raising=False)
+    started = warm_start.Server()
+    started.start()
+    assert started.process.wait(timeout=30) == 0        # ended by itself
+    assert "cannot listen on" in capfd.readouterr().err
+    monkeypatch.setenv("SERVER", str(started.process.pid))
+    assert job(tmp_path, "print(served)\n").stdout == "False\n"
+    started.stop()
+    assert list(deep.iterdir()) == []

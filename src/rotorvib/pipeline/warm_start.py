@@ -20,9 +20,10 @@ and an edited module is read as it now is.
 Served are only the jobs that Snakemake does not benchmark: a ``benchmark:`` measures the
 job's process and its children, and a forked child is the server's.  A job is run by its own
 process, as without a server, when no server serves its Snakemake run (a dry run, a SLURM job,
-the variable :data:`DISABLE` set), when the server is gone or refuses (it forks only while it
-runs one Python thread), or when the job is benchmarked.  A child dies with its client: Snakemake
-stopping a job (Ctrl-C, a failed job elsewhere) stops the child too.
+the variable :data:`DISABLE` set), when the server is gone, could not listen (a socket's path
+holds at most 107 bytes, which a deep TMPDIR exceeds; it says so) or refuses (it forks only
+while it runs one Python thread), or when the job is benchmarked.  A child dies with its
+client: Snakemake stopping a job (Ctrl-C, a failed job elsewhere) stops the child too.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ import importlib
 import json
 import os
 import select
+import shutil
 import signal
 import socket
 import struct
@@ -171,7 +173,14 @@ def serve(path: str) -> None:
     signal.set_wakeup_fd(wake_write)
     signal.signal(signal.SIGCHLD, lambda *_: None)
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    listener.bind(path)
+    try:
+        listener.bind(path)
+    except OSError as error:    # a socket path is at most 107 bytes: a long TMPDIR
+        print(f"rotorvib.pipeline.warm_start: cannot listen on {path} ({error}); every job "
+              "runs in its own process", file=sys.stderr)
+        listener.close()
+        shutil.rmtree(Path(path).parent, ignore_errors=True)
+        return
     listener.listen(16)
     clients: dict[int, tuple[socket.socket, str]] = {}
     learnt: list[str] = []      # what the ended children loaded, imported for the next job
