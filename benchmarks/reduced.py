@@ -1,5 +1,5 @@
-"""The reduced workflow run from scratch by a benchmark (benchmarks.cluster,
-benchmarks.warm_start): each case in its own results folder under ``results/<bench>/``, with the
+"""The reduced workflow as the benchmarks run it (benchmarks.cluster, benchmarks.warm_start):
+each case in its own results folder under ``results/<bench>/``, with the
 compiled engine's cache of the working tree (run the workflow or the tests once first, so that
 no case compiles it)."""
 

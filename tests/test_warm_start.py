@@ -38,12 +38,17 @@ def server(monkeypatch):
     started = warm_start.Server()
     started.start()
     path = os.environ[warm_start.ADDRESS].rpartition(":")[0]
-    deadline = time.monotonic() + 30
-    while not Path(path).exists() and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_until(Path(path).exists, 30)
     monkeypatch.setenv("SERVER", str(started.process.pid))
     yield started
     started.stop()
+
+
+def wait_until(holds, seconds: float) -> None:
+    """Poll ``holds()`` until it is true or ``seconds`` have passed (the caller asserts)."""
+    deadline = time.monotonic() + seconds
+    while not holds() and time.monotonic() < deadline:
+        time.sleep(0.01)
 
 
 def running(pid) -> bool:
@@ -128,16 +133,12 @@ def test_a_job_stops_when_its_process_is_killed(server, tmp_path):
     script.write_text(PREAMBLE.format(bench=None)
                       + "import time\nopen('pid', 'w').write(str(os.getpid()))\ntime.sleep(60)\n")
     client = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path)
-    deadline = time.monotonic() + 30
-    while not (tmp_path / "pid").exists() and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_until((tmp_path / "pid").exists, 30)
     child = int((tmp_path / "pid").read_text())
     assert child != client.pid
     client.send_signal(signal.SIGKILL)
     client.wait()
-    deadline = time.monotonic() + 10
-    while running(child) and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_until(lambda: not running(child), 10)
     assert not running(child)
 
 
@@ -152,10 +153,8 @@ def test_the_server_ends_with_the_process_that_started_it(tmp_path):
     pid, address = starter.stdout.readline().split()
     starter.send_signal(signal.SIGKILL)
     starter.wait()
-    deadline = time.monotonic() + 10
     folder = Path(address.rpartition(":")[0]).parent
-    while (folder.exists() or running(pid)) and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_until(lambda: not folder.exists() and not running(pid), 10)
     assert not folder.exists() and not running(pid)
 
 
