@@ -7,6 +7,10 @@ import numpy as np
 import pytest
 
 from rotorvib.methods.ga import minimise_many
+from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.papers.b.setup import LazyInputs, Setup
+from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset
+from rotorvib.papers.b.uncertainty import INPUTS, run_case
 from rotorvib.pipeline.shards import (GatheredRuns, RecordedRuns, ReplayedRuns, ShardRuns,
                                       record_dataset, shard_dataset, shard_rows)
 from workflow_runs import REDUCED_SHARDED, copy_run, job_counts, job_records, snakemake
@@ -58,6 +62,64 @@ def test_shards_that_do_not_cover_the_study_are_refused():
         GatheredRuns([pieces[0], shard_dataset(other, "another study")])
     with pytest.raises(ValueError, match=r"shard 3 must lie in \[0, 3\)"):
         shard_rows(10, 3, 3)
+
+
+def test_lazy_inputs_build_a_run_when_it_is_asked_for():
+    built = []
+    inputs = LazyInputs(5, lambda i: built.append(i) or (i, -i))
+    assert len(inputs) == 5 and built == []
+    assert inputs[3] == (3, -3) and inputs[-1] == (4, -4) and inputs[np.int64(0)] == (0, 0)
+    assert inputs[1:4:2] == [(1, -1), (3, -3)] and list(inputs)[2] == (2, -2)
+    assert built == [3, 4, 0, 1, 3, 0, 1, 2, 3, 4]
+    for bad in (5, -6):
+        with pytest.raises(IndexError, match=f"run {bad} of 5"):
+            inputs[bad]
+
+
+def grid_studies(setup: Setup, runs):
+    """Paper B's kinds of batch study, small: a balance study, the basin map (half of it run)
+    and an uncertainty case (its runs over ICs)."""
+    ics = {"IC1": [0.0, 90.0], "IC2": [45.0, 180.0]}
+    rows = np.zeros((4, len(INPUTS)))                 # no tolerances; R and r(0) given
+    rows[:, INPUTS.index("R")], rows[:, INPUTS.index("r0")] = np.linspace(0.009, 0.011, 4), 1e-4
+    return [balance_study_dataset(setup, kinematics=["printed", "consistent"], ics=ics,
+                                  axis="beta", values=[0.2, 0.5, 1.0], fixed={"mass": 0.01,
+                                  "eps_bar": 0.012}, where="a test", runs=runs).balance_time,
+            basin_dataset(setup, kinematics=["printed"], cases=[[1.0, 0.01]], n=4,
+                          eps_bar=0.012, ics=ics, runs=runs).balance_time,
+            run_case(setup, rows, {"beta": 1.0, "mass": 0.01, "eps_bar": 0.012, "speed": None,
+                                   "ics": list(ics.values())}, kinematics="printed",
+                     runs=runs)["force_max"]]
+
+
+def test_a_shard_builds_its_own_runs_inputs_and_the_gathering_none(config, monkeypatch):
+    """Each job of a sharded study sets up only the runs it computes (the inputs cost a job its
+    share, not the whole study): a shard its own, the gathering none; the gathered studies are
+    the whole ones."""
+    setup = Setup.from_paper_b(config["paper_b"])
+    built = []
+    run_inputs = Setup.run_inputs
+    monkeypatch.setattr(Setup, "run_inputs",
+                        lambda self, **kw: built.append(1) or run_inputs(self, **kw))
+
+    def runs(inputs):               # metrics that depend on each run's inputs alone
+        return np.array([[p.sum(), *y, *p][:N_METRICS] for p, y in inputs])
+
+    whole = grid_studies(setup, runs)
+    n_runs = len(built)
+    assert n_runs == 2 * 2 * 3 + (4 * 5 // 2 + 2) + 4 * 2
+    pieces = []
+    for k in range(3):
+        built.clear()
+        runner = ShardRuns(runs, k, 3, width=N_METRICS)
+        grid_studies(setup, runner)
+        assert len(built) == sum(rows.size for _, rows, _ in runner.calls)
+        pieces.append(shard_dataset(runner, "a test study"))
+    built.clear()
+    gathered = grid_studies(setup, GatheredRuns(pieces))
+    assert built == [] and sum(p.sizes["run"] for p in pieces) == n_runs
+    for a, b in zip(whole, gathered):
+        assert np.array_equal(a, b, equal_nan=True)
 
 
 SEEDS = [1, 2, 3, 4, 5]

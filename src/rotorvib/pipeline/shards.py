@@ -12,6 +12,10 @@ them:
 - the gathering job builds the study again with :class:`GatheredRuns`, which answers every call
   from the shards' rows, having checked that they cover each call's runs exactly once.
 
+A study hands its runner the inputs as a sequence whose items are built when read
+(:class:`rotorvib.papers.b.setup.LazyInputs`): a shard sets up only its own runs and the
+gathering none.
+
 The gathered dataset is byte-identical to the one a single job computes
 (``tests/test_shards.py``); the number of shards is not part of its provenance.
 

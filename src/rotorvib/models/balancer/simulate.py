@@ -33,6 +33,8 @@ METHOD = "dopri5"
 MAX_STEPS = 50_000_000
 #: Threads that a batch shares its runs out to (:func:`use_threads`): all cores by default.
 THREADS = os.cpu_count() or 1
+#: Runs of a batch whose stop certificates (1.3 KB each) are computed and held at a time.
+CERTIFICATE_CHUNK = 4096
 #: The compiled integrators this process has called (compiled or loaded from the cache) already.
 _READY: set = set()
 
@@ -237,7 +239,9 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     short runs mix, and a batch compiles nothing beyond the single run's integrator (its first
     use in a process, with the stop certificates and one run, holds the compile lock:
     :func:`_first_use`). Runs are processed in chunks of ``chunk`` so that progress can be
-    shown on stderr (in one piece without it). Failed runs are flagged in the ``status``
+    shown on stderr (in one piece without it), of at most :data:`CERTIFICATE_CHUNK`: a chunk's
+    certificates are computed when it starts, so that a batch holds little more than its
+    inputs and metrics. Failed runs are flagged in the ``status``
     column, not raised: see :func:`check_batch`.  ``params`` holds one parameter row per run
     (``engine.P_FIXED`` or ``engine.P_ROT``), ``y0s`` one state row per run; every argument is
     checked first (:mod:`inputs`), with ``ValueError`` naming it.
@@ -253,22 +257,25 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     result = np.empty((n, analysers.N_METRICS))
     no_samples = np.empty((0, y0s.shape[1]))
 
+    def with_stops(runs):
+        """The runs ``runs`` (indices), each with its certificate row (:mod:`settling`)."""
+        if stop is not None and form == engine.FIXED:
+            return zip(runs, certificates(params[runs], stop, c.sample_dt))
+        return zip(runs, np.tile(settling.disabled(), (len(runs), 1)))
+
     def take(runs):
-        for i in runs:
+        for i, stop_row in runs:
             result[i] = integrate(form, params[i], y0s[i], 0.0, float(c.t_end), rtol, atol,
                                   c.sample_dt, c.r_threshold, c.f_threshold, MAX_STEPS,
-                                  no_samples, stops[i], *tableau)
+                                  no_samples, stop_row, *tableau)
 
     with _first_use(integrate):
-        if stop is not None and form == engine.FIXED:
-            stops = certificates(params, stop, c.sample_dt)
-        else:
-            stops = np.tile(settling.disabled(), (n, 1))
-        take(order[:1])
-    chunk = chunk if progress else n
+        take(with_stops(order[:1]))
+    # the certificates of a chunk at a time: a batch holds its runs' inputs and metrics only
+    chunk = min(chunk if progress else n, CERTIFICATE_CHUNK)
     with ThreadPoolExecutor(THREADS) as pool:
         for start in range(0, n, chunk):
-            runs = iter(order[max(start, 1):start + chunk])   # shared: each thread takes the next
+            runs = iter(with_stops(order[max(start, 1):start + chunk]))  # each thread the next
             list(pool.map(take, [runs] * THREADS))
             if progress and n > chunk:
                 done = min(start + chunk, n)

@@ -11,7 +11,10 @@ another operating ``speed``, race radius ``R`` or support damping ``zeta``), bal
 from __future__ import annotations
 
 import inspect
+import operator
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -59,6 +62,42 @@ def describe(fixed: dict) -> str:
     """``{"mass": 0.01, "beta": 1.0}`` -> ``"m = 0.01 kg, beta = 1.0"``."""
     return ", ".join(f"{SYMBOLS.get(k, (k, ''))[0]} = {v}{SYMBOLS.get(k, (k, ''))[1]}"
                      for k, v in fixed.items())
+
+
+class LazyInputs(Sequence):
+    """The inputs of ``n`` runs, run ``i``'s ``(params, y0)`` built by ``build(i)`` when it is
+    asked for, each time.  A study hands its runner these instead of a list: a shard of the
+    study builds only its own runs' inputs and the gathering none
+    (:mod:`rotorvib.pipeline.shards`), so that the inputs cost each job its share of the study,
+    not the whole study."""
+
+    def __init__(self, n: int, build: Callable[[int], tuple]):
+        self.n, self.build = operator.index(n), build
+
+    def __len__(self) -> int:
+        return self.n
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self.build(j) for j in range(*i.indices(self.n))]
+        i = operator.index(i)
+        if not -self.n <= i < self.n:
+            raise IndexError(f"run {i} of {self.n}")
+        return self.build(i % self.n)
+
+
+def stacked(inputs) -> tuple[np.ndarray, np.ndarray]:
+    """The parameter rows and the initial states of ``inputs`` (``(params, y0)`` pairs, at
+    least one), as two arrays filled one run at a time: a :class:`LazyInputs` is never held
+    whole, only its arrays."""
+    n, params, y0s = len(inputs), None, None
+    for i, (p, y) in enumerate(inputs):
+        if params is None:
+            params, y0s = np.empty((n, *np.shape(p))), np.empty((n, *np.shape(y)))
+        params[i], y0s[i] = p, y
+    if params is None:
+        raise ValueError("no runs: a batch needs at least one")
+    return params, y0s
 
 
 @dataclass(frozen=True)
@@ -118,9 +157,9 @@ class Setup:
         return fixed_parameters(b, self.profile(kinematics, speed)), y0
 
     def runs(self, inputs, *, progress: bool = True) -> np.ndarray:
-        """Metrics of many ``(params, y0)`` runs, in parallel; failures raise."""
-        params = np.stack([p for p, _ in inputs])
-        y0s = np.stack([y for _, y in inputs])
+        """Metrics of many ``(params, y0)`` runs (a list or :class:`LazyInputs`), in parallel;
+        failures raise."""
+        params, y0s = stacked(inputs)
         metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress,
                             stop=self.stop, **self.tolerances)
         check_batch(metrics)

@@ -10,15 +10,13 @@ string coordinate ``<axis>_name``; select with :func:`rotorvib.io.coords.pick`.
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import axis_coord, label_coord
 from rotorvib.models.balancer.simulate import metric
-from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, dataset_attrs,
-                                     describe, parameter_coord)
+from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, LazyInputs, Setup,
+                                     dataset_attrs, describe, parameter_coord)
 
 METRIC_ATTRS = {
     "balance_time": ("balance time: r stays below the threshold afterwards (NaN if censored)", "s"),
@@ -58,26 +56,23 @@ def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dic
     invariant under swapping them, so only the points with ``index(a) <= index(b)`` are run and
     the others are their mirror images (about half the runs)."""
     names = list(axes)
-    points = list(itertools.product(*(range(len(v)) for v in axes.values())))
-    index_of = {p: p for p in points}
+    shape = tuple(len(v) for v in axes.values())
+    index = np.indices(shape).reshape(len(shape), -1)        # every point, in C order
     if symmetric is not None:
         ia, ib = names.index(symmetric[0]), names.index(symmetric[1])
         if not np.array_equal(axes[symmetric[0]], axes[symmetric[1]]):
             raise ValueError(f"symmetric axes {symmetric} must have the same values")
+        mirrored = index[ia] > index[ib]
+        index[[ia, ib]] = np.where(mirrored, index[[ib, ia]], index[[ia, ib]])
+    # the points run, in C order, and which of them answers each point
+    run, answer = np.unique(np.ravel_multi_index(index, shape), return_inverse=True)
+    del index
 
-        def swapped(p):
-            q = list(p)
-            q[ia], q[ib] = p[ib], p[ia]
-            return tuple(q)
+    def point_inputs(k):
+        return make_inputs(**{name: axes[name][i]
+                              for name, i in zip(names, np.unravel_index(run[k], shape))})
 
-        index_of = {p: p if p[ia] <= p[ib] else swapped(p) for p in points}
-    run = sorted(set(index_of.values()))
-    row = {p: k for k, p in enumerate(run)}
-    metrics = (runs or setup.runs)([make_inputs(**{name: axes[name][i]
-                                                    for name, i in zip(names, p)})
-                                    for p in run])
-    metrics = metrics[[row[index_of[p]] for p in points]]
-    shape = tuple(len(v) for v in axes.values())
+    metrics = (runs or setup.runs)(LazyInputs(run.size, point_inputs))[answer]
     data = {}
     for var in METRIC_ATTRS:
         values = metric(metrics, var).reshape(shape)

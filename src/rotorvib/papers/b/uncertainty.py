@@ -34,7 +34,7 @@ from rotorvib.comparison import MATCH_TOL, Margin, Reproduced, within_band
 from rotorvib.io.coords import pick
 from rotorvib.methods.sensitivity import band_statement, problem, sample, study_dataset
 from rotorvib.models.balancer.simulate import metric
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.setup import LazyInputs, Setup, dataset_attrs
 
 INPUTS = ("R", "r0", "eps_tolerance", "mass_tolerance", "k_tolerance")
 #: quantity -> units; a time is NaN for a run without one, ``balanced`` is 1 for a run that
@@ -123,17 +123,22 @@ def run_case(setup: Setup, x, case: dict, *, kinematics: str,
     a shard of them or their gathering, :mod:`rotorvib.pipeline.shards`).  A run that does not
     balance (or whose force does not decay) by ``t_end`` has no time: NaN, and a mean over ICs
     with such a run is NaN too."""
-    inputs = []
     positions = case.get("ics") or [case["phi0_deg"]]
-    for row in np.asarray(x, float):
-        v = dict(zip(INPUTS, row))
+    rows = np.asarray(x, float)
+
+    def build(i):
+        """Run ``i``: input point ``i // len(positions)`` at the ball positions
+        ``i % len(positions)``."""
+        row, phi = divmod(i, len(positions))
+        v = dict(zip(INPUTS, rows[row]))
         s = replace(setup, k=setup.k * (1 + v["k_tolerance"]), r0=v["r0"])
-        inputs += [s.run_inputs(mass=case["mass"] * (1 + v["mass_tolerance"]),
-                                eps_bar=case["eps_bar"] * (1 + v["eps_tolerance"]),
-                                beta=case["beta"], phi0_deg=tuple(phi), kinematics=kinematics,
-                                speed=case["speed"], R=v["R"])
-                   for phi in positions]
-    metrics = (runs or (lambda batch: setup.runs(batch, progress=False)))(inputs)
+        return s.run_inputs(mass=case["mass"] * (1 + v["mass_tolerance"]),
+                            eps_bar=case["eps_bar"] * (1 + v["eps_tolerance"]),
+                            beta=case["beta"], phi0_deg=tuple(positions[phi]),
+                            kinematics=kinematics, speed=case["speed"], R=v["R"])
+
+    metrics = (runs or (lambda batch: setup.runs(batch, progress=False)))(
+        LazyInputs(len(rows) * len(positions), build))
     metrics = metrics.reshape(len(x), len(positions), -1)
 
     def time_of(time, flag):
