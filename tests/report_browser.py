@@ -64,9 +64,34 @@ def _sidebar_links(page) -> list[str]:
     return page.eval_on_selector_all("nav a", "links => links.map(a => a.innerText.trim())")
 
 
+#: How long a click may take to change what the page shows (ms)
+CHANGE_TIMEOUT = 10_000
+#: The src of what the content area shows: an image, or an HTML page in a frame (None: neither)
+_CONTENT = ("document.querySelector('iframe, div.p-3 > img') && "
+            "document.querySelector('iframe, div.p-3 > img').getAttribute('src')")
+
+
+def _click_changing(page, target, state: str) -> bool:
+    """Click ``target`` and wait until the JavaScript expression ``state`` differs from its
+    value before the click (what a reader waits for); False if it has not within
+    CHANGE_TIMEOUT."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
+    before = page.evaluate(state)
+    target.click()
+    try:
+        page.wait_for_function(f"before => ({state}) !== before", arg=before,
+                               timeout=CHANGE_TIMEOUT)
+    except PlaywrightTimeout:
+        return False
+    return True
+
+
 def _click_text(page, text: str) -> None:
-    page.locator("nav a", has_text=text).first.click()
-    page.wait_for_timeout(100)
+    """Click the sidebar link ``text``: the sidebar must change."""
+    changed = _click_changing(page, page.locator("nav a", has_text=text).first,
+                              "document.querySelector('nav').innerHTML")
+    assert changed, f"clicking {text!r} in the sidebar changed nothing"
 
 
 def _result_rows(page) -> list[str]:
@@ -74,10 +99,10 @@ def _result_rows(page) -> list[str]:
         "nav table tbody tr", "rows => rows.map(r => r.cells[0].innerText.trim())")
 
 
-def _shown(page, path: tuple[str, ...], errors: list[str]) -> View:
-    """What the content area shows after the click that ``path`` ends with."""
-    page.wait_for_timeout(150)
-    view = View(path, errors=list(errors))
+def _shown(page, path: tuple[str, ...], errors: list[str], changed: bool) -> View:
+    """What the content area shows after the click that ``path`` ends with (an error if the
+    click did not ``changed`` it)."""
+    view = View(path, errors=list(errors) + ([] if changed else ["the view did not change"]))
     frame = page.query_selector("iframe")
     image = page.query_selector("div.p-3 > img")  # the content area's image view
     if frame is None and image is not None:
@@ -124,8 +149,9 @@ def every_view(browser, report: Path) -> tuple[list[str], list[View], dict[str, 
                 views.append(View((category, sub), errors=list(errors)))
                 errors.clear()
             for i, label in enumerate(labels):
-                page.locator("nav table tbody tr").nth(i).locator("a").first.click()
-                views.append(_shown(page, (category, sub, label), errors))
+                button = page.locator("nav table tbody tr").nth(i).locator("a").first
+                changed = _click_changing(page, button, _CONTENT)
+                views.append(_shown(page, (category, sub, label), errors, changed))
     page.close()
     return categories, views, lists
 
