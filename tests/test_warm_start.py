@@ -131,7 +131,9 @@ def test_a_malformed_request_is_refused_and_the_server_serves_on(server, tmp_pat
 def test_a_job_stops_when_its_process_is_killed(server, tmp_path):
     script = tmp_path / "job.py"
     script.write_text(PREAMBLE.format(bench=None)
-                      + "import time\nopen('pid', 'w').write(str(os.getpid()))\ntime.sleep(60)\n")
+                      + "import pathlib, time\n"   # the pid file whole when it appears
+                      "pathlib.Path('pid.part').write_text(str(os.getpid()))\n"
+                      "os.replace('pid.part', 'pid')\ntime.sleep(60)\n")
     client = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path)
     wait_until((tmp_path / "pid").exists, 30)
     child = int((tmp_path / "pid").read_text())
