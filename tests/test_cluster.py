@@ -38,9 +38,6 @@ SHARDED_STUDY = "paper_b/datasets/balance_beta.nc"
 SHARDS = [f"paper_b/shards/balance_beta.{k}-of-3.nc" for k in range(3)]
 #: Datasets of papers A and C the cluster test rebuilds too, where Snakemake runs
 OTHER_RULES = ("a_stability", "c_mass_ratio")
-#: The test's status poll (s; the profile's is for a shared controller): the run waits for the
-#: first poll after its shards are submitted, and for the poll's sleep to end when it exits
-POLL_SECONDS = 2
 
 
 def submitted_jobs(log: str) -> dict[str, str]:
@@ -58,9 +55,9 @@ def test_the_shipped_slurm_profile_runs_on_a_real_cluster(runs, tmp_path, slurm_
     sharded reduced run (tests/workflow_runs.py) and rebuilt through workflow/profiles/slurm as
     the README says: the study's three shards as SLURM jobs (side by side where the node has
     room) with the threads the profile sets, and nothing else; the gathering job, the other
-    datasets, their figures and values and the comparison where Snakemake runs; the status is
-    polled every POLL_SECONDS. Every result comes back byte-identical (so the gathered study
-    equals the unsharded run's, test_workflow.py). A hang fails the test (15 min bound)."""
+    datasets, their figures and values and the comparison where Snakemake runs. Every result
+    comes back byte-identical (so the gathered study equals the unsharded run's,
+    test_workflow.py). A hang fails the test (15 min bound)."""
     work = copy_run(runs[1], tmp_path / "work")
     before = digests(work)
     comparison = (work / "results/comparison.csv").read_bytes()
@@ -71,7 +68,6 @@ def test_the_shipped_slurm_profile_runs_on_a_real_cluster(runs, tmp_path, slurm_
                  "results/comparison.csv"]:
         (work / path).unlink()
     run = snakemake(work, "--workflow-profile", "workflow/profiles/slurm", *REDUCED_SHARDED,
-                    "--slurm-init-seconds-before-status-checks", str(POLL_SECONDS),
                     env=slurm_cluster, timeout=900)
     log = run.stdout + run.stderr
     submitted = submitted_jobs(log)
