@@ -46,11 +46,13 @@ def build(setup: Setup, n: int, runs):
 
 
 def measured(make):
-    """``make()``'s result, CPU seconds and peak traced memory (bytes)."""
-    tracemalloc.start()
+    """``make()``'s result, CPU seconds and peak traced memory (bytes): two calls, as tracing
+    the memory slows the allocations it traces several times."""
     start = time.process_time()
     result = make()
     cpu = time.process_time() - start
+    tracemalloc.start()
+    make()
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     return result, cpu, peak
@@ -76,10 +78,15 @@ def main() -> None:
         rows = {"whole study": costs}
         pieces = []
         for k in range(args.shards):
-            runner = ShardRuns(runs, k, args.shards, N_METRICS)
-            _, *costs = measured(lambda: build(setup, n, runner))
+            runners = []
+
+            def shard():
+                runners.append(ShardRuns(runs, k, args.shards, N_METRICS))
+                return build(setup, n, runners[-1])
+
+            _, *costs = measured(shard)
             rows.setdefault(f"shard of {args.shards}", costs)
-            pieces.append(shard_dataset(runner, "benchmark"))
+            pieces.append(shard_dataset(runners[0], "benchmark"))
         _, *rows["gathering"] = measured(lambda: build(setup, n, GatheredRuns(pieces)))
         total = whole.balance_time.size
         for job, (cpu, peak) in rows.items():
