@@ -56,8 +56,9 @@ def study_size_problems(b: dict) -> list[str]:
         if (runs := n ** power * times) > MAX_STUDY_RUNS:
             allowed = math.floor((MAX_STUDY_RUNS / times) ** (1 / power))
             problems.append(f"config key '{key}': {n} makes {runs} run-ups of its study, more "
-                            f"than {MAX_STUDY_RUNS} (every job of a study keeps arrays over all of them; "
-                            f"paper_b.shards does not split that): at most {allowed} here")
+                            f"than {MAX_STUDY_RUNS} (every job of a study keeps arrays over all "
+                            f"of them; paper_b.shards does not split that): at most {allowed} "
+                            "here")
     return problems
 
 
