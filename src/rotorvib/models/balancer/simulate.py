@@ -240,8 +240,8 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     short runs mix, and a batch compiles nothing beyond the single run's integrator (its first
     use in a process, with the stop certificates and one run, holds the compile lock:
     :func:`_first_use`). Runs are processed in chunks of ``chunk`` so that progress can be
-    shown on stderr (in one piece without it), of at most :data:`CERTIFICATE_CHUNK`: a chunk's
-    certificates are computed when it starts, so that a batch holds little more than its
+    shown on stderr (in one piece without it); their stop certificates are computed
+    :data:`CERTIFICATE_CHUNK` runs at a time, so that a batch holds little more than its
     inputs and metrics. Failed runs are flagged in the ``status``
     column, not raised: see :func:`check_batch`.  ``params`` holds one parameter row per run
     (``engine.P_FIXED`` or ``engine.P_ROT``), ``y0s`` one state row per run; every argument is
@@ -258,11 +258,11 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     result = np.empty((n, analysers.N_METRICS))
     no_samples = np.empty((0, y0s.shape[1]))
 
-    def with_stops(runs):
-        """The runs ``runs`` (indices), each with its certificate row (:mod:`settling`)."""
+    def stop_rows(runs):
+        """The certificate rows (:mod:`settling`) of the runs ``runs`` (indices)."""
         if stop is not None and form == engine.FIXED:
-            return zip(runs, certificates(params[runs], stop, c.sample_dt))
-        return zip(runs, np.tile(settling.disabled(), (len(runs), 1)))
+            return certificates(params[runs], stop, c.sample_dt)
+        return np.tile(settling.disabled(), (len(runs), 1))
 
     def take(runs):
         for i, stop_row in runs:
@@ -271,17 +271,19 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
                                   no_samples, stop_row, *tableau)
 
     with _first_use(integrate):
-        take(with_stops(order[:1]))
-    # the certificates of a chunk at a time: a batch holds its runs' inputs and metrics only
-    chunk = min(chunk if progress else n, CERTIFICATE_CHUNK)
+        take(zip(order[:1], stop_rows(order[:1])))
+    chunk = chunk if progress else n
     with ThreadPoolExecutor(THREADS) as pool:
-        for start in range(0, n, chunk):
-            runs = iter(with_stops(order[max(start, 1):start + chunk]))  # each thread the next
-            list(pool.map(take, [runs] * THREADS))
-            if progress and n > chunk:
-                done = min(start + chunk, n)
-                print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
-                      file=sys.stderr, flush=True)
+        for block in range(1, n, CERTIFICATE_CHUNK):
+            runs = order[block:block + CERTIFICATE_CHUNK]
+            stops = stop_rows(runs)
+            for start in range(0, len(runs), chunk):
+                shared = iter(zip(runs[start:start + chunk], stops[start:start + chunk]))
+                list(pool.map(take, [shared] * THREADS))   # each thread takes the next run
+                if progress and n > chunk:
+                    done = block + min(start + chunk, len(runs))
+                    print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
+                          file=sys.stderr, flush=True)
     if progress and n > chunk:
         print(file=sys.stderr)
     return result
