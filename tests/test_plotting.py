@@ -1,8 +1,11 @@
 """Figures (rotorvib.io.plotting): the parameters a figure depends on, what it draws read off
 its artists, and its PNG and SVG files, byte-stable."""
 
+import re
+
 import numpy as np
 import xarray as xr
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 from PIL import Image
 
 from rotorvib.io.plotting import (
@@ -68,6 +71,26 @@ def test_a_figure_is_written_as_png_and_svg_byte_stable(tmp_path):
     again = save(_drawn()[0], tmp_path / "g.png")
     assert again.read_bytes() == path.read_bytes()
     assert again.with_suffix(".svg").read_bytes() == path.with_suffix(".svg").read_bytes()
+
+
+def test_a_figure_is_laid_out_once_and_its_svg_keeps_the_png_layout(tmp_path, monkeypatch):
+    """One constrained-layout pass per figure, as its PNG canvas is drawn; the SVG's axes stand
+    where the PNG's do (savefig alone lays the figure out again, at the SVG's 72 dpi)."""
+    passes = []
+    execute = ConstrainedLayoutEngine.execute
+    monkeypatch.setattr(ConstrainedLayoutEngine, "execute",
+                        lambda engine, fig: passes.append(fig) or execute(engine, fig))
+    fig, ax = _drawn()
+    position = ax.get_position()
+    width, height = fig.get_figwidth() * 72, fig.get_figheight() * 72
+    path = save(fig, tmp_path / "f.png")
+    assert len(passes) == 1 and position.bounds != ax.get_position().bounds
+    laid_out = ax.get_position()
+    corners = re.search(r'<g id="patch_2">\s*<path d="M ([\d.]+) ([\d.]+)\s+L ([\d.]+) ',
+                        path.with_suffix(".svg").read_text())
+    x0, y0, x1 = (float(v) for v in corners.groups())
+    assert np.allclose([x0 / width, x1 / width, 1 - y0 / height],
+                       [laid_out.x0, laid_out.x1, laid_out.y0], atol=1e-8)
 
 
 def test_a_title_wider_than_the_figure_is_kept_whole(tmp_path):

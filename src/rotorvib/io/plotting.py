@@ -154,11 +154,20 @@ def _texts_on_canvas(fig) -> bool:
     return True
 
 
+def _fix_layout(fig) -> None:
+    """Keep the figure's layout as last drawn: no layout engine, so that ``savefig`` neither
+    draws the figure once more to lay it out nor lays it out again (it does both for a figure
+    with a layout engine)."""
+    with plt.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
+        fig.set_layout_engine(None)
+
+
 def save(fig, path: str | Path) -> Path:
     """Save as PNG and, beside it, as SVG (a vector copy for papers), both without timestamps
-    (byte-stable for equal content), and close. The PNG is the canvas as drawn once
-    (``savefig`` would lay the figure out in a pass of its own first); a figure with a text
-    beyond its canvas (a title wider than the figure) is saved cropped to all it draws
+    (byte-stable for equal content), and close. The figure is laid out once, as the PNG's
+    canvas is drawn; the PNG is that canvas and the SVG keeps its layout (``savefig`` would
+    lay the figure out in a pass of its own first, each time). A figure with a text beyond its
+    canvas (a title wider than the figure) is saved cropped to all it draws
     (``bbox_inches="tight"``) instead, in both formats."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -170,6 +179,7 @@ def save(fig, path: str | Path) -> Path:
         else:
             imsave(path, np.asarray(fig.canvas.buffer_rgba()), format="png", dpi=fig.dpi,
                    metadata={"Software": None})
+        _fix_layout(fig)
         fig.savefig(path.with_suffix(".svg"), format="svg", metadata={"Date": None}, **crop)
     plt.close(fig)
     return path
