@@ -1,6 +1,8 @@
 """The broadband absorber (beyond paper C): its objectives against independent routes, the
 floor of two tuned sets, and an NSGA-II front that beats Table 2 at Table 2's mass."""
 
+import tracemalloc
+
 import numpy as np
 import pytest
 
@@ -8,7 +10,7 @@ from rotorvib.methods.ga import ParetoFront
 from rotorvib.models.absorber.frequency_response import (dimensionless_amplitude,
                                                          natural_frequencies, steady_state)
 from rotorvib.models.absorber.parameters import AbsorberSet, dual_from_vector, dual_to_vector
-from rotorvib.papers.c.broadband import (NoDesignAtMass, added_mass, band_peak,
+from rotorvib.papers.c.broadband import (BAND_CHUNK, NoDesignAtMass, added_mass, band_peak,
                                          broadband_front, pick_at_mass, tuned_mass_floor)
 
 W = np.linspace(0.7, 1.3, 241)
@@ -22,6 +24,20 @@ def test_band_peak_equals_the_linear_solve(rotor, table2):
                                                         W * rotor.omega_n)[:, 0])
         assert peak == pytest.approx(D.max(), rel=1e-12)
     assert added_mass(dual_to_vector(table2)) == pytest.approx(2 * (0.1 + 0.085))
+
+
+def test_band_peak_of_a_population_is_each_designs_own_in_bounded_memory(rotor, table2):
+    """A search's population over its band (200 designs x 601 frequencies) gives, bit for bit,
+    each design's peak alone, while its temporaries stay those of one chunk of
+    ``BAND_CHUNK`` (design, frequency) pairs, not of the whole population."""
+    x = dual_to_vector(table2) * np.random.default_rng(1).uniform(0.8, 1.2, (200, 8))
+    w = np.linspace(0.7, 1.3, 601)
+    tracemalloc.start()
+    peaks = band_peak(rotor, x, w)
+    used = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert np.array_equal(peaks, [band_peak(rotor, design, w) for design in x])
+    assert used < 16 * 16 * BAND_CHUNK       # 16 complex temporaries of one chunk at most
 
 
 def test_the_tuned_mass_floor_tunes_each_set_to_omega_n(rotor):
