@@ -57,9 +57,12 @@ RULE_HEAD = re.compile(r"^(?:rule (\w+):|use rule \w+ as (\w+) with:)\n((?:[ #].
                        re.M)
 #: Every rule of the workflow: (name, its text, whether written ``rule NAME:`` rather than
 #: ``use rule ... as NAME with:``, which inherits what it does not change)
-RULE_BLOCKS = [(a or b, block, bool(a)) for a, b, block in RULE_HEAD.findall(
-    "\n".join(p.read_text() for p in sorted((SRC.parent / "workflow/rules").glob("*.smk")))
-    + "\n")]
+RULES_TEXT = "\n".join(
+    p.read_text() for p in sorted((SRC.parent / "workflow/rules").glob("*.smk"))) + "\n"
+RULE_BLOCKS = [(a or b, block, bool(a)) for a, b, block in RULE_HEAD.findall(RULES_TEXT)]
+#: ``use rule BASE as NAME with:``: NAME -> BASE
+USED_AS = {name: base for base, name in
+           re.findall(r"^use rule (\w+) as (\w+) with:", RULES_TEXT, re.M)}
 
 
 def rule_blocks() -> dict[str, str]:
@@ -96,6 +99,26 @@ def test_every_job_that_computes_starts_before_the_figures_and_tables():
             assert "priority:" in block, name
         else:
             assert "priority:" not in block or "priority: LONGEST_CHAIN" in block, name
+
+
+def test_every_job_the_longest_chain_waits_for_shares_its_priority(snakemake_here):
+    """The longest chain (workflow/rules/common.smk) starts as early as its inputs allow: every
+    rule that paper B's discrepancy analysis needs, directly or through other rules (its
+    ancestors in Snakemake's rule graph), declares the chain's priority, or inherits it from
+    the rule it uses; one with less waits behind other jobs and holds the chain back."""
+    graph = snakemake_here("--rulegraph")
+    assert graph.returncode == 0, graph.stderr
+    label = dict(re.findall(r'^\s*(\d+)\[label = "(\w+)"', graph.stdout, re.M))
+    needs = [(label[a], label[b]) for a, b in re.findall(r"^\s*(\d+) -> (\d+)", graph.stdout, re.M)]
+    upstream, frontier = set(), {"b_discrepancies"}
+    while frontier:
+        frontier = {a for a, b in needs if b in frontier} - upstream
+        upstream |= frontier
+    assert {"b_ga", "b_boundary", "b_ga_law", "b_reproduced_values"} <= upstream
+    blocks = rule_blocks()
+    waiting = {name for name in upstream
+               if "priority: LONGEST_CHAIN" not in blocks[name] + blocks.get(USED_AS.get(name), "")}
+    assert not waiting
 
 
 SCRIPTS = sorted((SRC.parent / "workflow/scripts").glob("*.py"))

@@ -60,8 +60,9 @@ def reproduced_file(paper):
 # symbolic checks, the longest job that needs no compiled engine, beside the first engine job
 # (on an empty cache it compiles the engine while the next engine job waits for it,
 # rotorvib.methods.numba_cache); paper B's run-up studies, which head the longest chain of jobs
-# (their reproduced values, the discrepancy analysis, the comparison, the report), and that
-# chain; then every other job that computes; then the figures and tables (no priority, 0).
+# (their reproduced values, the discrepancy analysis, the comparison, the report), that chain
+# and every job it waits for (tests/test_layout.py derives them from the rule graph); then
+# every other job that computes; then the figures and tables (no priority, 0).
 BESIDE_THE_COMPILE, LONGEST_CHAIN, COMPUTES = 3, 2, 1
 
 # Where a job runs under a cluster executor (workflow/profiles/slurm): where Snakemake runs

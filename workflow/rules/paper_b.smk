@@ -322,6 +322,7 @@ rule b_boundary:
         logs("b_boundary_{plane}"),
     wildcard_constraints:
         plane="|".join(B_PLANES),
+    priority: LONGEST_CHAIN
     # small eigenvalue problems along a curve: runs where Snakemake runs
     localrule: True
     params:
@@ -607,6 +608,7 @@ rule b_balance_law:
         dataset("b", "balance_law"),
     log:
         logs("b_balance_law"),
+    priority: LONGEST_CHAIN
     # Reads datasets and solves small eigenvalue problems: runs where Snakemake runs.
     localrule: True
     params:
@@ -644,7 +646,7 @@ rule b_ga_law:
         logs("b_ga_law"),
     benchmark:
         benchmarks("b_ga_law")
-    priority: COMPUTES
+    priority: LONGEST_CHAIN
     localrule: True
     params:
         setup=B_SETUP,
