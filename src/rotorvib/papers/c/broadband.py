@@ -50,10 +50,10 @@ def added_mass(x) -> np.ndarray:
 
 #: Designs times band frequencies that :func:`band_peak` evaluates at a time. Eq. (20) over a
 #: population and the band makes a dozen complex temporaries of that many values; at 8192 each
-#: is 128 KiB, which stays in the cache and in the allocator's heap. Larger ones are mapped from
-#: and returned to the kernel at every call: over the whole band at once (200 designs x 601
-#: frequencies, 1.9 MB each) the broadband search spent as much system time on that as on the
-#: arithmetic.
+#: is 128 KiB, which the allocator serves from its heap again and again. Larger ones it maps
+#: from the kernel and returns to it at every call: over the whole band at once (200 designs x
+#: 601 frequencies, 1.9 MB each) the broadband search spent about half as much system time on
+#: the fresh pages as user time on everything else.
 BAND_CHUNK = 8192
 
 
