@@ -57,9 +57,10 @@ def reproduced_file(paper):
 # Scheduling: every job runs one thread (a batch study's second thread gains less than a second
 # job beside it on a few cores; workflow/profiles/slurm gives paper B's batch studies more), and
 # long jobs start first so that short ones fill the gaps at the end (`priority`): paper B's
-# symbolic checks, the longest job that needs no compiled engine, beside the first engine job
-# (on an empty cache it compiles the engine while the next engine job waits for it,
-# rotorvib.methods.numba_cache); paper B's run-up studies, which head the longest chain of jobs
+# genetic algorithm, the longest job (on an empty cache it compiles the engine, and an engine
+# job started meanwhile waits for it, rotorvib.methods.numba_cache), beside its symbolic checks,
+# the longest job that needs no compiled engine; paper B's run-up studies, which head the
+# longest chain of jobs
 # (their reproduced values, the discrepancy analysis, the comparison, the report), that chain
 # and every job it waits for (tests/test_layout.py derives them from the rule graph); then
 # every other job that computes; then the figures and tables (no priority, 0).

@@ -424,7 +424,7 @@ rule b_ga_shard:
     wildcard_constraints:
         shard=r"\d+",
         shards=r"\d+",
-    priority: LONGEST_CHAIN
+    priority: BESIDE_THE_COMPILE
     resources:
         runtime=60,
     params:
