@@ -60,10 +60,9 @@ def reproduced_file(paper):
 # genetic algorithm, the longest job (on an empty cache it compiles the engine, and an engine
 # job started meanwhile waits for it, rotorvib.methods.numba_cache), beside its symbolic checks,
 # the longest job that needs no compiled engine; paper B's run-up studies, which head the
-# longest chain of jobs
-# (their reproduced values, the discrepancy analysis, the comparison, the report), that chain
-# and every job it waits for (tests/test_layout.py derives them from the rule graph); then
-# every other job that computes; then the figures and tables (no priority, 0).
+# longest chain of jobs (their reproduced values, the discrepancy analysis, the comparison, the
+# report), that chain and every job it waits for (tests/test_layout.py derives them from the
+# rule graph); then every other job that computes; then the figures and tables (no priority).
 BESIDE_THE_COMPILE, LONGEST_CHAIN, COMPUTES = 3, 2, 1
 
 # Where a job runs under a cluster executor (workflow/profiles/slurm): where Snakemake runs
