@@ -39,6 +39,12 @@ def test_repository_config_is_valid_and_defaults_are_filled(config, schema):
      ["'paper_c.frequency_response.w_min'", "smaller than 'w_max'"]),
     (lambda c: c["paper_c"]["time_response"].update(t_end=1.0),
      ["'paper_c.claims.fig3_time'", "<= 'paper_c.time_response.t_end'"]),
+    (lambda c: c.update(results="results\n"),
+     ["'results': the text 'results\\n' is not allowed", "without control characters"]),
+    (lambda c: c["paper_b"]["balance_studies"]["beta"].update(where="Figs 8-10\x1b[2J"),
+     ["'paper_b.balance_studies.beta.where'", "control characters"]),
+    (lambda c: c["paper_b"]["balance_studies"].update({"beta ": {}}),
+     ["'paper_b.balance_studies': the key 'beta ' is not allowed"]),
 ])
 def test_malformed_config_names_key_and_allowed_values(config, schema, mutate, expected):
     with pytest.raises(ConfigError) as err:

@@ -14,6 +14,14 @@ def _cell(value) -> str:
     return str(value)
 
 
+def markdown_cell(text: str) -> str:
+    """``text`` as the content of a Markdown table cell, shown as written: on one line, the
+    cell separator escaped and ``<``, ``>`` as character references (a Markdown viewer passes
+    an HTML tag through)."""
+    one_line = " ".join(text.split())
+    return one_line.replace("|", "\\|").replace("<", "&lt;").replace(">", "&gt;")
+
+
 def write_table(rows: list[dict], csv_path: str | Path, md_path: str | Path, *, title: str,
                 notes: list[str] = (), markdown_cells=None) -> None:
     """Write ``rows`` (dicts with the same keys, in column order) as CSV and Markdown.
@@ -27,10 +35,10 @@ def write_table(rows: list[dict], csv_path: str | Path, md_path: str | Path, *, 
         writer.writeheader()
         writer.writerows({k: ("" if v is None else v) for k, v in row.items()} for row in rows)
     lines = [f"# {title}", ""] + [line for note in notes for line in (note, "")]
-    lines += ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(map(markdown_cell, columns)) + " |", "|" + "---|" * len(columns)]
     for row in rows:
         cells = {k: _cell(v) for k, v in row.items()}
         if markdown_cells is not None:
             cells.update(markdown_cells(row))
-        lines.append("| " + " | ".join(cells[k].replace("|", "\\|") for k in columns) + " |")
+        lines.append("| " + " | ".join(markdown_cell(cells[k]) for k in columns) + " |")
     Path(md_path).write_text("\n".join(lines) + "\n", encoding="utf-8")

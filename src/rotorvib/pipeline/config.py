@@ -20,6 +20,7 @@ from __future__ import annotations
 import copy
 import math
 import sys
+import unicodedata
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -175,6 +176,32 @@ def _non_finite(config, path=()) -> list[str]:
     return []
 
 
+def _bad_text(config, path=()) -> list[str]:
+    """Every key or string holding a control character (a newline among them) or starting or
+    ending with whitespace: a name or a text shown in the report, a table or a path must read
+    as written (found by a hostile-input audit: a study name ending in a newline was taken)."""
+
+    def bad(text: str) -> bool:
+        return text != text.strip() or any(unicodedata.category(ch) == "Cc" for ch in text)
+
+    def problem(key, text, what):
+        return (f"config key '{_key(key)}': {what} {text!r} is not allowed; must be printable "
+                "text without control characters or surrounding whitespace")
+
+    found = []
+    if isinstance(config, dict):
+        for key, value in config.items():
+            if isinstance(key, str) and bad(key):
+                found.append(problem(path, key, "the key"))
+            found += _bad_text(value, path + (key,))
+    elif isinstance(config, list):
+        for i, value in enumerate(config):
+            found += _bad_text(value, path + (str(i),))
+    elif isinstance(config, str) and bad(config):
+        found.append(problem(path, config, "the text"))
+    return found
+
+
 def _lookup(config: dict, dotted: str):
     node = config
     for part in dotted.split("."):
@@ -262,7 +289,7 @@ def validate_config(config: dict, schema: dict) -> dict:
     _fill_defaults(filled, schema)
     errors = sorted(_validator_class()(schema).iter_errors(filled),
                     key=lambda e: list(map(str, e.absolute_path)))
-    messages = _non_finite(filled) + [_describe(e) for e in errors]
+    messages = _non_finite(filled) + _bad_text(filled) + [_describe(e) for e in errors]
     if not messages:
         messages = _check_extensions(filled, schema, {**schema, "__config__": filled})
     if messages:

@@ -18,13 +18,25 @@ from rotorvib.comparison import VERDICT_GROUPS, margin_text, totals, verdict_def
 
 # Verdicts that are findings: the paper and the reproduction disagree.
 FINDINGS = ("MAJOR", "PAPER-INCONSISTENT", "UNEXPECTED", "NOT SUPPORTED")
-_RST_SPECIAL = re.compile(r"([\\`*_|\[\]<>])")
+# reST's inline markup characters, and the characters of Jinja's delimiters ({{ }}, {% %}, {# #}):
+# Snakemake renders a caption and the landing page as a Jinja template before docutils reads
+# it, so escaping each of them (reST shows ``\{`` as ``{``) leaves no two adjacent and no
+# template tag, and a text cannot close a raw block.
+_RST_SPECIAL = re.compile(r"([\\`*_|\[\]<>{}%#])")
+# Control characters (other than whitespace, which is collapsed): shown as U+FFFD.
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+# URI schemes that run code where a browser follows them: docutils makes a link of a bare URI,
+# so their colon is escaped (the text reads the same and links nowhere).
+_SCRIPT_SCHEME = re.compile(r"(?i)\b(javascript|vbscript|data)(\s*):")
 _ITEM = re.compile(r"^(Figs?|Tables?)\s+(\d+)(?:\s*[-–]\s*(\d+))?$")
 
 
 def rst_text(text: str) -> str:
-    """``text`` as literal reStructuredText inline content (markup characters escaped)."""
-    return _RST_SPECIAL.sub(r"\\\1", " ".join(str(text).split()))
+    """``text`` as literal reStructuredText inline content, inert when Snakemake renders it as
+    a Jinja template: on one line (whitespace collapsed, so no text starts a directive such as
+    ``.. include::``), markup and template characters escaped, control characters replaced."""
+    one_line = " ".join(_CONTROL.sub("\ufffd", str(text)).split())
+    return _SCRIPT_SCHEME.sub(r"\1\2\\:", _RST_SPECIAL.sub(r"\\\1", one_line))
 
 
 def numbers_of_name(name: str) -> tuple[int, ...]:
@@ -132,7 +144,8 @@ def statement(row: dict, claim: str = "", lead: str = "") -> str:
         said = f"{said}: {found}"
     elif margin_text(row):
         said = f"{said}: margin {margin_text(row)}"
-    lead = f"**{rst_text(lead)}**" if lead else f"**{row['verdict']}** ({rst_text(row['item'])})"
+    lead = (f"**{rst_text(lead)}**" if lead
+            else f"**{rst_text(row['verdict'])}** ({rst_text(row['item'])})")
     # a claim's explanation quotes each variant, "printed: ... | consistent: ..."
     explanation = f" {rst_text(row['explanation'].replace(' | ', '; '))}" if row["explanation"] else ""
     says = f" The paper: {rst_text(row['paper_says'])}." if row.get("paper_says") else ""
@@ -195,9 +208,9 @@ def totals_table(table: list[dict]) -> list[str]:
     papers = sorted(counts)
     everything = sum(counts.values(), Counter())
     verdicts = list(dict.fromkeys(v for _, group in VERDICT_GROUPS for v in group))
-    rows = [[f"Paper {p}"] + [str(counts[p][v]) for v in verdicts] for p in papers]
+    rows = [[f"Paper {rst_text(p)}"] + [str(counts[p][v]) for v in verdicts] for p in papers]
     rows.append(["all"] + [str(everything[v]) for v in verdicts])
-    return _list_table(["paper"] + verdicts, rows)
+    return _list_table(["paper"] + [rst_text(v) for v in verdicts], rows)
 
 
 def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]:
@@ -223,6 +236,18 @@ def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]
 TITLE = "rotorvib: three rotor-dynamics papers reproduced from first principles"
 
 
+def paper_entries(papers: dict) -> dict[str, dict[str, str]]:
+    """The papers of ``data/papers.yaml`` as the report links them: each key one capital letter
+    (the report's category "Paper A" is a link target) and each entry a mapping of texts;
+    ``ValueError`` naming the entry otherwise."""
+    for letter, entry in papers.items():
+        if not (isinstance(letter, str) and re.fullmatch("[A-Z]", letter)):
+            raise ValueError(f"data/papers.yaml: paper {letter!r} is not one capital letter")
+        if not (isinstance(entry, dict) and all(isinstance(v, str) for v in entry.values())):
+            raise ValueError(f"data/papers.yaml: paper {letter}: every field must be a text")
+    return papers
+
+
 def landing_page(table: list[dict], papers: dict[str, dict]) -> str:
     """The report's first page, short enough to read beside the rule graph: what was
     reproduced, the verdict totals in one line per group, and links to the summary (the
@@ -238,7 +263,7 @@ def landing_page(table: list[dict], papers: dict[str, dict]) -> str:
     lines += ["", "`Summary`_: the totals of each paper, the findings and the discrepancy "
               "analysis. `Comparison`_: every row.", ""]
     lines += [f"- `Paper {letter}`_: {rst_text(paper['title'])}"
-              for letter, paper in sorted(papers.items())]
+              for letter, paper in sorted(paper_entries(papers).items())]
     return "\n".join(lines) + "\n"
 
 
@@ -259,7 +284,7 @@ def summary_text(table: list[dict], claims: dict[tuple[str, str], str], papers: 
               "miss:", ""]
     lines += findings(table, claims) + ["", "Papers", "------", ""]
     lines += [f"- **Paper {letter}.** {rst_text(paper['citation'])} {rst_text(paper['summary'])}"
-              for letter, paper in sorted(papers.items())]
+              for letter, paper in sorted(paper_entries(papers).items())]
     return "\n".join(lines) + "\n"
 
 

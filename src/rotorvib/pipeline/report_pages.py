@@ -101,14 +101,19 @@ def table_page(title: str, caption_html: str, csv_text: str, filename: str) -> s
 """
 
 
+#: docutils settings of every page written here: any warning raises, and no directive may
+#: include a file or pass raw HTML through (the texts are escaped, rotorvib.pipeline.report.rst_text;
+#: this holds even where one is not).
+_SETTINGS = {"halt_level": 2, "report_level": 2, "_disable_config": True,
+             "raw_enabled": False, "file_insertion_enabled": False}
+
+
 def rst_to_html(text: str) -> str:
     """``text`` (reStructuredText) as a standalone HTML page; any docutils warning raises."""
     return publish_string(text, writer_name="html5", settings_overrides={
-        "halt_level": 2, "report_level": 2, "embed_stylesheet": True,
-        "output_encoding": "unicode", "_disable_config": True}).strip() + "\n"
+        **_SETTINGS, "embed_stylesheet": True, "output_encoding": "unicode"}).strip() + "\n"
 
 
 def rst_fragment(text: str) -> str:
     """``text`` (reStructuredText) as an HTML fragment (a caption inside a page)."""
-    return publish_parts(text, writer_name="html5", settings_overrides={
-        "halt_level": 2, "report_level": 2, "_disable_config": True})["body"]
+    return publish_parts(text, writer_name="html5", settings_overrides=_SETTINGS)["body"]
