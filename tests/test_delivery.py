@@ -18,7 +18,8 @@ import report_browser
 from conftest import ROOT
 from ro_crate import validate_crate
 from rotorvib.pipeline.report import numbers_of_item, numbers_of_name
-from rotorvib.pipeline.archive import METADATA_DIR, verify_archive
+from rotorvib.pipeline.archive import (METADATA_DIR, digest_file, restore_archive,
+                                       verify_archive)
 from workflow_runs import (REDUCED, REDUCED_SHARDED, copy_repository, copy_run, job_records,
                            planned_jobs, snakemake)
 
@@ -125,8 +126,9 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
             "results/run/config.yaml", "results/run/commit.txt",
             "config/test/config.yaml", "ro-crate-metadata.json"} <= set(members)
     fresh = copy_repository(tmp_path / "fresh")
-    with tarfile.open(archive) as tar:
-        tar.extractall(fresh, filter="data")
+    published = digest_file(archive).read_text().split()[0]
+    restored = restore_archive(archive, published, fresh)
+    assert "Snakefile" not in restored and "results/paper_c/datasets/ga.nc" in restored
     with ThreadPoolExecutor(1) as pool:      # the validator works while Snakemake restores
         issues = pool.submit(validate_crate, fresh, tmp_path / "cache")
         snakemake(fresh, "-j1", "--touch", *REDUCED)

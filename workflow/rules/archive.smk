@@ -33,7 +33,9 @@ rule archive:
         configuration=list(RUN_RECORD.values()) + configuration_files(),
         code=["Snakefile", "LICENSE", "CITATION.cff"],
     output:
-        f"{RESULTS_DIR}/archive/rotorvib-results.tar.gz",
+        archive=f"{RESULTS_DIR}/archive/rotorvib-results.tar.gz",
+        # its SHA-256, to publish with it: a restore checks the archive against it
+        digest=f"{RESULTS_DIR}/archive/rotorvib-results.tar.gz.sha256",
     log:
         logs("archive"),
     # Reads datasets only: runs where Snakemake runs, never as a cluster job.

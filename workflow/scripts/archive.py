@@ -20,6 +20,7 @@ crate = crate_metadata(
     description="Every dataset (CF-1.11 netCDF), table and figure of one run of the rotorvib "
                 "workflow, the words and pages of its report, the run's configuration and commit.",
     snakemake_version=snakemake_package.__version__,
-    results_dir=Path(snakemake.output[0]).parents[1].as_posix())  # <results>/archive/...
+    results_dir=Path(snakemake.output.archive).parents[1].as_posix())  # <results>/archive/...
 make_archive(list(inputs.results) + list(inputs.configuration) + list(inputs.code),
-             snakemake.output[0], generated={CRATE: crate})
+             snakemake.output.archive, generated={CRATE: crate})
+print(f"archive SHA-256 (publish it with the archive): {Path(snakemake.output.digest).read_text()}")

@@ -1,4 +1,5 @@
-"""Archive of the pipeline's results: one tarball, a SHA-256 manifest and restore notes.
+"""Archive of the pipeline's results: one tarball, a SHA-256 manifest and restore notes, and a
+restore that verifies before it trusts (:func:`restore_archive`).
 
 The archive holds the files under their repository paths (``results/...``) plus
 ``results/ARCHIVE_MANIFEST.sha256`` (``sha256sum -c`` format) and ``results/ARCHIVE_README.md``.
@@ -19,7 +20,10 @@ import hashlib
 import io
 import json
 import os
+import shutil
+import sys
 import tarfile
+import tempfile
 import zlib
 from pathlib import Path
 
@@ -33,25 +37,29 @@ RESTORE_NOTES = """# rotorvib results archive
 
 This archive holds every dataset (netCDF), table and figure of one run of the rotorvib
 workflow, under their paths in the repository, with the run's whole configuration and commit
-(`results/run/`), the Snakefile, the licence and the citation file. `ro-crate-metadata.json` describes it all as a Workflow Run RO-Crate (the
-workflow, the run, each file's checksum, format and licence).
+(`results/run/`), the Snakefile, the licence and the citation file. `ro-crate-metadata.json`
+describes it all as an RO-Crate 1.3 (the workflow, the run, each file's checksum, format and
+licence).
 
 ## Restore without recomputing
 
 From the root of a clone of the repository at the commit recorded in the datasets
-(attribute `provenance_git_commit`):
+(attribute `provenance_git_commit`), with the SHA-256 published beside the archive (its
+`.sha256` file; never a digest read from the archive itself):
 
-    tar -xzf rotorvib-results.tar.gz
-    sha256sum -c results/ARCHIVE_MANIFEST.sha256    # every file must say OK
+    python -m rotorvib.pipeline.archive restore rotorvib-results.tar.gz --sha256 DIGEST
     snakemake -j1 --touch                            # mark the restored files up to date
     snakemake -n                                     # "Nothing to be done"
     snakemake --report results/report.html           # the HTML report, from the restored files
 
-`--touch` only updates timestamps; no job runs. The archive also carries Snakemake's records
-of the jobs (`.snakemake/metadata/`), so after restoring, changing a parameter in
-`config/config.yaml` reruns exactly the jobs that depend on it, as after a fresh run. The
-records carry no run times (two builds of one commit give the same archive), so the report's
-runtime statistics read zero.
+The restore checks the archive against the digest and every file against
+`results/ARCHIVE_MANIFEST.sha256` before it writes anything, takes regular files only, and
+writes only `results/`, Snakemake's job records (`.snakemake/metadata/`) and the crate: the
+Snakefile and the configuration files come from your clone, never from an archive (Snakemake
+runs the one and evaluates templates in the other). `--touch` only updates timestamps; no job
+runs. With the job records, changing a parameter in `config/config.yaml` reruns exactly the
+jobs that depend on it, as after a fresh run. The records carry no run times (two builds of
+one commit give the same archive), so the report's runtime statistics read zero.
 
 ## Contents
 
@@ -105,7 +113,7 @@ def make_archive(files: list[str | Path], output: str | Path,
                  generated: dict[str, str] | None = None) -> Path:
     """Pack ``files`` (paths relative to the repository root) with their Snakemake job
     records, the ``generated`` members (name -> text, e.g. the RO-Crate), a manifest of all of
-    them and a README."""
+    them and a README; write the archive's SHA-256 beside it (:func:`digest_file`)."""
     files = sorted({Path(f).as_posix() for f in files})
     records = {record: without_run_times(record) for record in job_records(files)}
     generated = dict(sorted({**records, **(generated or {})}.items()))
@@ -123,7 +131,14 @@ def make_archive(files: list[str | Path], output: str | Path,
             _add_text(tar, name, text)
         _add_text(tar, MANIFEST, manifest)
         _add_text(tar, README, RESTORE_NOTES.format(count=len(files) + len(generated)))
+    digest_file(output).write_text(f"{sha256_file(output)}  {output.name}\n", encoding="utf-8")
     return output
+
+
+def digest_file(archive: str | Path) -> Path:
+    """The file beside an archive that holds its SHA-256 (``sha256sum`` format): the digest a
+    restore checks the archive against, published with it."""
+    return Path(f"{archive}.sha256")
 
 
 def _anonymise(info: tarfile.TarInfo) -> tarfile.TarInfo:
@@ -136,32 +151,207 @@ def _anonymise(info: tarfile.TarInfo) -> tarfile.TarInfo:
     return info
 
 
-def verify_archive(path: str | Path) -> list[str]:
-    """Check every member against the manifest; return the archived file paths.
+#: What a restore takes from an archive: the results, Snakemake's job records and the crate
+#: that describes them. The rest (the Snakefile, the configuration files, the licence and the
+#: citation) is checked against the manifest but never written: the workflow's code and
+#: configuration come from the clone, not from an archive.
+RESTORED = ("results/", f"{METADATA_DIR}/", "ro-crate-metadata.json")
+#: Bounds on what a verify or a restore reads: members, bytes of one member and of all, and
+#: of the manifest (the paper configuration's archive: about 700 members, 60 MB).
+MAX_MEMBERS = 100_000
+MAX_MEMBER_BYTES = 1 << 30
+MAX_TOTAL_BYTES = 16 << 30
+MAX_MANIFEST_BYTES = 32 << 20
+_BLOCK = 1 << 20
 
-    Raises ``ValueError`` on a missing, extra or corrupted member, and on a file that is not
-    a complete gzip-compressed tar archive.
-    """
+
+class _HashingReader:
+    """A binary file read through while its SHA-256 is computed: the digest covers exactly the
+    bytes the tar reader saw (no second read that could see other bytes)."""
+
+    def __init__(self, fh):
+        self.fh, self.digest = fh, hashlib.sha256()
+
+    def read(self, size=-1):
+        data = self.fh.read(size)
+        self.digest.update(data)
+        return data
+
+    def rest(self) -> str:
+        """The digest of the whole file, after reading what the tar reader left."""
+        for block in iter(lambda: self.read(_BLOCK), b""):
+            pass
+        return self.digest.hexdigest()
+
+
+def _member_problem(member: tarfile.TarInfo) -> str | None:
+    """Why a member is refused, or None: only regular files with a relative, normalised name
+    inside the archive, no special mode bits, within the size bound."""
+    name = member.name
+    if not member.isfile():
+        return "is not a regular file (a link, directory or device)"
+    if name.startswith("/") or "\\" in name or any(p in ("", ".", "..")
+                                                     for p in name.split("/")):
+        return "has a name that is not a plain relative path"
+    if member.mode & 0o7000:
+        return "has a setuid, setgid or sticky bit"
+    if member.size > MAX_MEMBER_BYTES:
+        return f"is larger than {MAX_MEMBER_BYTES} bytes"
+    return None
+
+
+def _manifest(data: bytes) -> dict[str, str]:
+    """The manifest's lines, ``<64 hex digits>  <name>``, as name -> digest."""
+    expected = {}
+    for line in data.decode("utf-8").splitlines():
+        digest, sep, name = line.partition("  ")
+        if not sep or len(digest) != 64 or set(digest) - set("0123456789abcdef") or name in expected:
+            raise ValueError(f"manifest line {line[:80]!r} is not '<sha256>  <name>'")
+        expected[name] = digest
+    return expected
+
+
+def _copy(source, target: Path | None) -> str:
+    """The SHA-256 of ``source`` read in blocks, written to ``target`` (a new file, created
+    exclusively, never through a link) when given."""
+    digest = hashlib.sha256()
+    sink = None
+    if target is not None:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        sink = os.fdopen(os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW,
+                                 0o644), "wb")
     try:
-        return _verify(path)
+        for block in iter(lambda: source.read(_BLOCK), b""):
+            digest.update(block)
+            if sink is not None:
+                sink.write(block)
+    finally:
+        if sink is not None:
+            sink.close()
+    return digest.hexdigest()
+
+
+def _scan(path: str | Path, sha256: str | None, stage: Path | None) -> list[str]:
+    """Read the archive once, as a stream: check each member (:func:`_member_problem` and the
+    bounds above), hash it, and write it under ``stage`` when a restore takes it (:data:`RESTORED`);
+    then check the whole file's SHA-256 against ``sha256`` (when given) and every member
+    against the manifest. Returns the archived file paths; ``ValueError`` otherwise."""
+    digests, manifest, total = {}, None, 0
+    with open(path, "rb") as raw:
+        reader = _HashingReader(raw)
+        with tarfile.open(fileobj=reader, mode="r|gz") as tar:
+            for member in tar:
+                if problem := _member_problem(member):
+                    raise ValueError(f"member {member.name!r} {problem}")
+                if member.name in digests or (member.name == MANIFEST and manifest is not None):
+                    raise ValueError(f"member {member.name!r} appears twice")
+                total += member.size
+                if len(digests) >= MAX_MEMBERS or total > MAX_TOTAL_BYTES:
+                    raise ValueError(f"more than {MAX_MEMBERS} members or {MAX_TOTAL_BYTES} bytes")
+                source = tar.extractfile(member)
+                if member.name == MANIFEST:
+                    if member.size > MAX_MANIFEST_BYTES:
+                        raise ValueError(f"the manifest is larger than {MAX_MANIFEST_BYTES} bytes")
+                    manifest = _manifest(source.read())
+                    continue
+                restored = stage is not None and member.name.startswith(RESTORED)
+                digests[member.name] = _copy(source, stage / member.name if restored else None)
+        whole = reader.rest()
+    if sha256 is not None and whole != sha256.strip().lower():
+        raise ValueError(f"the archive's SHA-256 is {whole}, not the {sha256.strip()} given: "
+                         "it is not the published archive")
+    if manifest is None:
+        raise KeyError(MANIFEST)
+    digests.pop(README, None)
+    if set(digests) != set(manifest):
+        raise ValueError(f"archive members {sorted(set(digests) ^ set(manifest))} do not "
+                         "match the manifest")
+    for name, actual in digests.items():
+        if actual != manifest[name]:
+            raise ValueError(f"{name}: SHA-256 {actual} does not match the manifest")
+    return sorted(manifest)
+
+
+def _refuse_links_on_the_way(root: Path, relative: str) -> None:
+    """``ValueError`` if a folder on the way from ``root`` to ``relative`` is a symbolic link
+    (a restore writes inside the clone only)."""
+    here = root
+    for part in relative.split("/")[:-1]:
+        here = here / part
+        if here.is_symlink():
+            raise ValueError(f"{here} is a symbolic link: a restore writes only inside {root}")
+
+
+def verify_archive(path: str | Path, sha256: str | None = None) -> list[str]:
+    """Check every member against the manifest, and the whole file against ``sha256`` (a digest
+    kept outside the archive: the ``.sha256`` file the build writes beside it, or the one
+    published with it) when given; return the archived file paths.
+
+    Raises ``ValueError`` on a missing, extra, corrupted or refused member (a link, a device, a
+    name leaving the archive's folder, a special mode, a size over the bounds), on a digest that
+    differs, and on a file that is not a complete gzip-compressed tar archive. Reads the
+    archive once as a stream, in blocks of 1 MiB.
+    """
+    return _checked(path, sha256, None)
+
+
+def restore_archive(path: str | Path, sha256: str, root: str | Path = ".") -> list[str]:
+    """Restore an archive into the clone at ``root``, trusting nothing in it: the archive's
+    SHA-256 must be ``sha256`` (kept outside the archive), every member is checked as by
+    :func:`verify_archive`, and only the members of :data:`RESTORED` are written, after every
+    check has passed (staged in a private folder inside ``root``, then moved into place).
+    Returns the restored paths."""
+    root = Path(root).resolve()
+    stage = Path(tempfile.mkdtemp(prefix=".restore-", dir=root))
+    try:
+        names = _checked(path, sha256, stage)
+        restored = [name for name in names if name.startswith(RESTORED)]
+        for name in restored:
+            _refuse_links_on_the_way(root, name)
+            (root / name).parent.mkdir(parents=True, exist_ok=True)
+            os.replace(stage / name, root / name)
+        return restored
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _checked(path, sha256, stage) -> list[str]:
+    try:
+        return _scan(path, sha256, stage)
     except (EOFError, OSError, tarfile.TarError, zlib.error, KeyError, UnicodeDecodeError) as e:
         raise ValueError(f"{path}: not a complete rotorvib archive ({type(e).__name__}: {e})") \
             from None
 
 
-def _verify(path: str | Path) -> list[str]:
-    with tarfile.open(path, "r:gz") as tar:
-        members = {m.name: m for m in tar.getmembers() if m.isfile()}
-        expected = {}
-        for line in tar.extractfile(members.pop(MANIFEST)).read().decode().splitlines():
-            digest, name = line.split("  ", 1)
-            expected[name] = digest
-        members.pop(README)
-        if set(members) != set(expected):
-            raise ValueError(f"archive members {sorted(set(members) ^ set(expected))} do not "
-                             "match the manifest")
-        for name, member in members.items():
-            actual = hashlib.sha256(tar.extractfile(member).read()).hexdigest()
-            if actual != expected[name]:
-                raise ValueError(f"{name}: SHA-256 {actual} does not match the manifest")
-    return sorted(expected)
+def main(argv=None) -> int:
+    """``python -m rotorvib.pipeline.archive restore ARCHIVE --sha256 DIGEST``: restore into the
+    current folder (a clone of the repository), or ``verify ARCHIVE [--sha256 DIGEST]``."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="python -m rotorvib.pipeline.archive",
+                                     description="Verify or restore a rotorvib results archive.")
+    parser.add_argument("action", choices=("verify", "restore"))
+    parser.add_argument("archive")
+    parser.add_argument("--sha256", help="the archive's SHA-256, as published beside it "
+                        "(required to restore)")
+    args = parser.parse_args(argv)
+    if args.action == "restore" and not args.sha256:
+        parser.error("restore needs --sha256: the digest published with the archive (its "
+                     ".sha256 file), not one read from the archive itself")
+    try:
+        if args.action == "verify":
+            names = verify_archive(args.archive, args.sha256)
+            print(f"verified: {len(names)} files match the manifest"
+                  + ("" if args.sha256 else " (no --sha256 given: the manifest itself is "
+                                            "not checked against a published digest)"))
+        else:
+            names = restore_archive(args.archive, args.sha256)
+            print(f"restored {len(names)} files; now run: snakemake -j1 --touch")
+    except ValueError as error:
+        print(f"refused: {error}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
