@@ -103,7 +103,8 @@ def test_config_check_command_gives_file_line_and_column(tmp_path, capsys):
 def test_libyaml_parser_reads_every_yaml_file_as_pyyaml_does(name):
     """The fast loader (libyaml's parser) and PyYAML's own give the same data, value and type
     (``1e-9`` a float in both)."""
-    fast, own = (strict_yaml._load_file(ROOT / name, loader) for loader in
+    text = strict_yaml.read_text(ROOT / name)
+    fast, own = (strict_yaml._load(strict_yaml._named(text, name), loader) for loader in
                  (strict_yaml.FastStrictLoader, strict_yaml.StrictLoader))
     assert repr(fast) == repr(own)
     assert issubclass(strict_yaml.FastStrictLoader, yaml.CSafeLoader)
@@ -115,7 +116,7 @@ def test_both_parsers_refuse_a_duplicate_key_at_its_place(tmp_path):
     for loader in (strict_yaml.FastStrictLoader, strict_yaml.StrictLoader):
         with pytest.raises(ConfigError,
                            match=r"twice.yaml:4:5: duplicate key 'zeta' \(first at line 3\)"):
-            strict_yaml._load_file(twice, loader)
+            strict_yaml._load(strict_yaml._named(twice.read_text(), str(twice)), loader)
 
 
 def test_nested_command_line_overrides_are_read_as_yaml():

@@ -206,7 +206,7 @@ def test_every_malformed_config_is_rejected_naming_its_key(key, value, named):
     # an alias bomb: nine levels of nine aliases (9^9 values), measured without expanding it
     ("a0: &a0 [1, 2, 3, 4, 5, 6, 7, 8, 9]\n" + "".join(
         f"a{i}: &a{i} [{', '.join([f'*a{i - 1}'] * 9)}]\n" for i in range(1, 9)),
-     "its aliases expand to 4.9e+08 values; at most 1e+06"),
+     "its aliases expand to more than 1e+05 values; at most 1e+05"),
 ])
 def test_yaml_errors_name_file_line_and_column(tmp_path, text, expected):
     path = tmp_path / "bad.yaml"

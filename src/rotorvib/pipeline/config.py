@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 import yaml
 
 from rotorvib.pipeline.config_checks import problems
-from rotorvib.pipeline.strict_yaml import ConfigError, load_value, load_yaml
+from rotorvib.pipeline.strict_yaml import ConfigError, check_value, load_value, load_yaml
 
 if TYPE_CHECKING:
     import jsonschema
@@ -52,23 +52,33 @@ def typed_overrides(overrides: dict) -> dict:
     Snakemake reads ``--config paper_c='{den_hartog: {d: 0.09}}'`` with YAML's base loader,
     which leaves every nested value a string ("0.09"); each such string is read again here as
     a value of a configuration file would be (:func:`rotorvib.pipeline.strict_yaml.load_value`:
-    ``0.09`` and ``1e-9`` are numbers, ``printed`` stays a string). Top-level values, which
-    Snakemake already types, are kept.  Only ``--config`` values come here: a configuration
-    file is read once, by :func:`load_yaml`."""
+    ``0.09`` and ``1e-9`` are numbers, ``printed`` stays a string, ``0777`` is refused naming
+    its key). Top-level values, which Snakemake already types, are kept. The overrides' shape
+    is checked first (:func:`rotorvib.pipeline.strict_yaml.check_value`: Snakemake keeps an
+    alias as one shared object, which is typed once). Only ``--config`` values come here: a
+    configuration file is read once, by :func:`load_yaml`."""
+    check_value(overrides, "--config")
+    typed_once: dict[int, Any] = {}
 
-    def typed(value):
+    def typed(value, path):
+        if id(value) in typed_once:
+            return typed_once[id(value)]
         if isinstance(value, dict):
-            return {key: typed(item) for key, item in value.items()}
-        if isinstance(value, list):
-            return [typed(item) for item in value]
-        if isinstance(value, str):
+            result = {key: typed(item, path + (key,)) for key, item in value.items()}
+        elif isinstance(value, list):
+            result = [typed(item, path + (str(i),)) for i, item in enumerate(value)]
+        elif isinstance(value, str):
             try:
-                return load_value(value)
+                result = load_value(value, f"--config {_key(path)}")
             except yaml.YAMLError:
-                return value
-        return value
+                result = value
+        else:
+            result = value
+        if isinstance(value, (dict, list)):
+            typed_once[id(value)] = result
+        return result
 
-    return {key: typed(value) if isinstance(value, (dict, list)) else value
+    return {key: typed(value, (key,)) if isinstance(value, (dict, list)) else value
             for key, value in overrides.items()}
 
 

@@ -7,13 +7,19 @@ text.  The loaders here resolve plain scalars by the YAML 1.2 core schema instea
 would read otherwise (octal-looking and sexagesimal numbers, numbers with ``_``, ``0b``
 binaries, ``yes``/``no``/``on``/``off``): quoting it makes it text.  They also
 refuse a duplicate key (YAML keeps the last value silently), a key that is not text, the keys
-of Snakemake's YTE templates (a template runs Python), a file above :data:`MAX_BYTES` and a
-document whose aliases expand to more than :data:`MAX_NODES` values.
+of Snakemake's YTE templates (a template runs Python), anything but a regular file (a
+directory, a device, a pipe: :func:`read_text` never blocks) and a file above
+:data:`MAX_BYTES`, and, from the parser's events before any value is built
+(:func:`check_shape`), a document nested deeper than :data:`MAX_DEPTH`, an alias inside the
+value it names, or aliases that expand to more than :data:`MAX_NODES` values.
 """
 
 from __future__ import annotations
 
+import io
+import os
 import re
+import stat
 from pathlib import Path
 from typing import Any
 
@@ -21,8 +27,11 @@ import yaml
 
 #: Size of a configuration file at most (the project's own is 17 kB).
 MAX_BYTES = 1_000_000
-#: Values of a configuration at most, counting each alias as the whole value it repeats.
-MAX_NODES = 1_000_000
+#: Values of a configuration at most, counting each alias as the whole value it repeats (the
+#: project's configuration and schema: a few thousand each).
+MAX_NODES = 100_000
+#: Mappings and lists inside each other at most (the project's configuration nests 6 deep).
+MAX_DEPTH = 64
 #: Keys of Snakemake's YTE template engine, which evaluates Python in a configuration file.
 TEMPLATE_KEYS = ("__use_yte__", "__definitions__", "__variables__")
 
@@ -102,24 +111,95 @@ for _loader in (StrictLoader, FastStrictLoader):
     _loader.add_constructor(_AMBIGUOUS_TAG, _ambiguous)
 
 
-def expanded_size(value: Any, memo: dict | None = None) -> int:
-    """The number of values in ``value`` with every alias counted as the whole value it repeats
-    (computed once per distinct object, so an alias bomb is measured without expanding it)."""
-    memo = {} if memo is None else memo
-    if id(value) in memo:
-        return memo[id(value)]
-    if isinstance(value, dict):
-        size = 1 + sum(expanded_size(v, memo) for v in value.values()) + len(value)
-    elif isinstance(value, list):
-        size = 1 + sum(expanded_size(v, memo) for v in value)
-    else:
-        size = 1
-    memo[id(value)] = size
-    return size
+def check_value(value: Any, name: str) -> None:
+    """The limits of :func:`check_shape` on a value already built (Snakemake's reading of a
+    ``--config`` override, or a module's ``config:``): at most :data:`MAX_DEPTH` deep, no
+    value inside itself, at most :data:`MAX_NODES` values with every repeated object counted
+    each time it appears (an alias bomb is measured, not expanded); :class:`ConfigError`
+    naming ``name`` otherwise."""
+    sizes: dict[int, int] = {}
+    inside: set[int] = set()
+
+    def size(item, depth: int) -> int:
+        if not isinstance(item, (dict, list)):
+            return 1
+        if id(item) in inside:
+            raise ConfigError(f"{name}: a value inside itself")
+        if id(item) not in sizes:
+            if depth >= MAX_DEPTH:
+                raise ConfigError(f"{name}: nested more than {MAX_DEPTH} levels deep")
+            inside.add(id(item))
+            children = item.values() if isinstance(item, dict) else item
+            sizes[id(item)] = 1 + len(item) * isinstance(item, dict) + sum(
+                size(child, depth + 1) for child in children)
+            inside.discard(id(item))
+        return sizes[id(item)]
+
+    if (total := size(value, 0)) > MAX_NODES:
+        raise ConfigError(f"{name}: {total:.3g} values with its repetitions; at most "
+                          f"{MAX_NODES:.0e}")
+
+
+def _named(text: str, name: str) -> io.StringIO:
+    """``text`` as a stream whose marks name ``name`` (a file, or a ``--config`` key)."""
+    stream = io.StringIO(text)
+    stream.name = name
+    return stream
+
+
+def _at(name: str, event) -> str:
+    mark = event.start_mark
+    return f"{name}:{mark.line + 1}:{mark.column + 1}"
+
+
+def check_shape(text: str, name: str) -> None:
+    """Refuse, from the parser's events and before any value is built, a document nested deeper
+    than :data:`MAX_DEPTH`, an alias inside the value it names (a value that contains itself)
+    and one whose aliases expand to more than :data:`MAX_NODES` values (each alias counted as
+    the whole value it repeats, known when its anchor's value ends). A syntax error is left to
+    the loader, which says more."""
+    frames: list[list] = []          # [size so far, anchor] of each open mapping or list
+    sizes: dict[str, int] = {}       # anchor -> expanded size of its value
+    total = 0
+
+    def add(size: int, event) -> None:
+        nonlocal total
+        total += size
+        if frames:
+            frames[-1][0] += size
+        if total > MAX_NODES:
+            raise ConfigError(f"{_at(name, event)}: its aliases expand to more than "
+                              f"{MAX_NODES:.0e} values; at most {MAX_NODES:.0e}")
+
+    try:
+        for event in yaml.parse(_named(text, name), Loader=FastStrictLoader):
+            if isinstance(event, yaml.AliasEvent):
+                if any(frame[1] == event.anchor for frame in frames):
+                    raise ConfigError(f"{_at(name, event)}: alias *{event.anchor} inside the "
+                                      "value it names (a value cannot contain itself)")
+                add(sizes.get(event.anchor, 1), event)
+            elif isinstance(event, yaml.ScalarEvent):
+                add(1, event)
+                if event.anchor is not None:
+                    sizes[event.anchor] = 1
+            elif isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+                if len(frames) >= MAX_DEPTH:
+                    raise ConfigError(f"{_at(name, event)}: nested more than {MAX_DEPTH} "
+                                      "levels deep")
+                add(1, event)
+                frames.append([0, event.anchor])
+            elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+                size, anchor = frames.pop()
+                if frames:
+                    frames[-1][0] += size
+                if anchor is not None:
+                    sizes[anchor] = size + 1
+    except yaml.YAMLError:
+        return
 
 
 def _load(stream, loader) -> Any:
-    """The single document of ``stream`` (an open file names its marks)."""
+    """The single document of ``stream`` (its ``name`` names the marks)."""
     reader = loader(stream)
     try:
         return reader.get_single_data()
@@ -127,48 +207,71 @@ def _load(stream, loader) -> Any:
         reader.dispose()
 
 
-def _load_file(path: str | Path, loader) -> Any:
-    with open(path, encoding="utf-8") as fh:
-        return _load(fh, loader)
-
-
-def load_yaml(path: str | Path) -> dict:
-    """A YAML mapping from ``path``, read strictly (module docstring); :class:`ConfigError`
-    with file, line and column for a syntax error, an ambiguous scalar, a duplicate or
-    non-text key or a template key, and for a file too large, an alias expansion too large or
-    a document that is not a mapping."""
-    size = Path(path).stat().st_size
-    if size > MAX_BYTES:
-        raise ConfigError(f"{path}: {size} bytes; a configuration file may have at most "
-                          f"{MAX_BYTES}")
+def read_text(path: str | Path) -> str:
+    """The text of a configuration file, read without trusting the path: a regular file
+    (opened without blocking, so a pipe cannot hang the reader; a directory, a device or a pipe
+    refused), at most :data:`MAX_BYTES` read, UTF-8; :class:`ConfigError` naming the file."""
     try:
-        try:
-            data = _load_file(path, FastStrictLoader)
-        except yaml.YAMLError:  # read again for the more telling message
-            data = _load_file(path, StrictLoader)
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError as error:
+        raise ConfigError(f"{path}: cannot be read ({error.strerror})") from None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise ConfigError(f"{path}: not a regular file (a directory, a device or a pipe); "
+                              "a configuration is a YAML file")
+        data = b""
+        while len(data) <= MAX_BYTES and (block := os.read(fd, MAX_BYTES + 1 - len(data))):
+            data += block
+    finally:
+        os.close(fd)
+    if len(data) > MAX_BYTES:
+        raise ConfigError(f"{path}: more than {MAX_BYTES} bytes; a configuration file may "
+                          f"have at most {MAX_BYTES}")
+    try:
+        return data.decode("utf-8")
     except UnicodeDecodeError as error:
         raise ConfigError(f"{path}: not UTF-8 text ({error.reason} at byte {error.start})") \
             from None
+
+
+def load_text(text: str, name: str) -> Any:
+    """The value of a YAML document ``text`` read strictly (module docstring), its shape
+    checked first (:func:`check_shape`); :class:`ConfigError` with ``name``, line and column
+    otherwise."""
+    check_shape(text, name)
+    try:
+        try:
+            return _load(_named(text, name), FastStrictLoader)
+        except yaml.YAMLError:  # read again for the more telling message
+            return _load(_named(text, name), StrictLoader)
     except yaml.MarkedYAMLError as error:
         mark = error.problem_mark or error.context_mark
-        where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)
+        where = f"{name}:{mark.line + 1}:{mark.column + 1}" if mark else name
         problem = error.problem or error.context
         hint = "; tabs are not allowed for indentation" if "\\t" in str(problem) else ""
         raise ConfigError(f"{where}: {problem} (YAML syntax{hint})") from None
     except yaml.YAMLError as error:
-        raise ConfigError(f"{path}: {error} (YAML)") from None
+        raise ConfigError(f"{name}: {error} (YAML)") from None
+
+
+def load_yaml(path: str | Path) -> dict:
+    """A YAML mapping from ``path``, read strictly (module docstring): :func:`read_text`, then
+    :func:`load_text`; :class:`ConfigError` with file, line and column for a syntax error, an
+    ambiguous scalar, a duplicate or non-text key or a template key, and for a file that is
+    not a regular file or too large, a document too deep or too large, or one that is not a
+    mapping."""
+    data = load_text(read_text(path), str(path))
     if data is None:
         return {}
     if not isinstance(data, dict):
         raise ConfigError(f"{path}: a configuration file must be a mapping of keys, not "
                           f"{type(data).__name__}")
-    nodes = expanded_size(data)
-    if nodes > MAX_NODES:
-        raise ConfigError(f"{path}: its aliases expand to {nodes:.3g} values; at most "
-                          f"{MAX_NODES:.0e}")
     return data
 
 
-def load_value(text: str) -> Any:
-    """One value of a ``--config`` override, read as in a configuration file."""
-    return _load(text, StrictLoader)
+def load_value(text: str, name: str = "--config") -> Any:
+    """One text inside a ``--config`` override (``name``: where it came from) read as a value of
+    a configuration file would be: its shape checked (:func:`check_shape`), then read strictly;
+    a ``yaml.YAMLError`` when it is not YAML (the caller keeps the text)."""
+    check_shape(text, name)
+    return _load(_named(text, name), StrictLoader)
