@@ -2,8 +2,6 @@
 # `snakemake -j2` builds everything (rule all); `snakemake -j2 archive` packs the results.
 from snakemake.utils import min_version
 
-from rotorvib.pipeline.warm_start import Server
-
 min_version("9.0")
 
 
@@ -34,20 +32,3 @@ rule all:
 # configuration hash each of its input datasets must carry.
 add_code_fingerprints(workflow.rules)
 add_input_checks(workflow.rules)
-
-
-# Script jobs that are not benchmarked run in forks of one process that holds the libraries they
-# import, for the jobs of this command (rotorvib.pipeline.warm_start).
-WARM_START = Server()
-
-
-onstart:
-    WARM_START.start()
-
-
-onsuccess:
-    WARM_START.stop()
-
-
-onerror:
-    WARM_START.stop()

@@ -1,4 +1,4 @@
-"""The reduced workflow as the benchmarks run it (benchmarks.cluster, benchmarks.warm_start):
+"""The reduced workflow as the benchmarks run it (benchmarks.cluster):
 each case in its own results folder under ``results/<bench>/``, with the
 compiled engine's cache of the working tree (run the workflow or the tests once first, so that
 no case compiles it)."""

@@ -8,7 +8,7 @@ import xarray as xr
 
 from conftest import cf_check
 from rotorvib.io.provenance import config_hash
-from rotorvib.pipeline.config import INPUT_PRODUCERS_PARAM, job_config
+from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 
 

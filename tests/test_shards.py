@@ -60,7 +60,7 @@ def test_shards_that_do_not_cover_the_study_are_refused():
     other([1.0, 2.0])
     with pytest.raises(ValueError, match="different studies"):
         GatheredRuns([pieces[0], shard_dataset(other, "another study")])
-    with pytest.raises(ValueError, match=r"shard 3 must lie in \[0, 3\)"):
+    with pytest.raises(ValueError, match=r"shard = 3: must be an integer >= 0 and <= 2"):
         shard_rows(10, 3, 3)
 
 

@@ -82,28 +82,11 @@ def test_datasets_pass_cf_1_11(run_dir):
 
 def test_two_runs_give_byte_identical_results(runs):
     """Every dataset, table and figure of two independent runs is the same byte for byte, the
-    second with paper B's batch studies in three shards each and every job in its own process
-    (tests/workflow_runs.py): a run is deterministic, and neither sharding nor the warm start
-    changes a result. The second has its shards besides."""
+    second with paper B's batch studies in three shards each (tests/workflow_runs.py): a run is
+    deterministic, and sharding changes no result. The second has its shards besides."""
     first, second = (digests(work) for work in runs)
     shards = {name for name in second if name.startswith("results/paper_b/shards/")}
     assert first and shards and first == {k: v for k, v in second.items() if k not in shards}
-
-
-def test_the_jobs_snakemake_does_not_benchmark_start_warm(runs):
-    """In the first run every script job without a ``benchmark:`` ran in a fork of the warm-start
-    server (rotorvib.pipeline.warm_start) and every benchmarked one in its own process; the second
-    run ran every job in its own process (ROTORVIB_NO_WARM_START)."""
-    from test_layout import rule_blocks
-
-    first, second = (job_records(work) for work in runs)
-    assert len(first) > 70 and all(r["warm_started"] != r["benchmarked"] for r in first)
-    assert sum(r["warm_started"] for r in first) > 40
-    assert not any(r["warm_started"] for r in second)
-    # the signal the client reads agrees with the rules as written
-    benchmarked = {name for name, block in rule_blocks().items() if "benchmark:" in block}
-    assert {r["rule"] for r in first if r["benchmarked"]} == benchmarked & {
-        r["rule"] for r in first}
 
 
 def test_config_change_reruns_exactly_the_dependent_jobs(run_dir, tmp_path):
@@ -178,6 +161,12 @@ def test_every_module_and_data_file_reruns_exactly_the_jobs_that_load_it(run_dir
              for name, plan in planned.items() if plan != expected(name)}
     assert not wrong, json.dumps(wrong, indent=1)
     assert planned["src/rotorvib/__init__.py"] >= {f for r in records for f in r["output"]}
+    # the machinery stays out of the jobs: an edit of a pipeline module reruns at most one job
+    # (and what follows from it), but for a job's start-up and a sharded study's split
+    loaders = {name: sum(name_of(name) in r["modules"] for r in records) for name in modules
+               if name.startswith("src/rotorvib/pipeline/") and name_of(name) not in (
+                   "rotorvib.pipeline", "rotorvib.pipeline.job", "rotorvib.pipeline.shards")}
+    assert max(loaders.values()) <= 1, loaders
 
 
 def test_a_forked_command_answers_as_a_fresh_one(run_dir, tmp_path):

@@ -2,7 +2,7 @@
 
 Two reduced runs (config/test/config.yaml), each in its own copy of the repository, are built
 once per test session by :func:`shared_runs`, the second with every batch study of paper B in
-three shards (:data:`REDUCED_SHARDED`) and without the warm start of jobs: the first
+three shards (:data:`REDUCED_SHARDED`): the first
 pytest-xdist worker to need them builds them while the other waits on a lock, then both use
 them.  The tests that read them live in
 several files (test_workflow.py, test_shards.py, test_delivery.py, test_cluster.py) so that the
@@ -163,15 +163,13 @@ def build_runs(root: Path) -> list[Path]:
     """Two independent reduced runs under ``root``, each in its own copy of the repository,
     side by side (two runs share the two cores better than one run followed by another): the
     first with every study in one job, the second with paper B's batch studies sharded
-    (:data:`REDUCED_SHARDED`) and every job in its own process (no warm start,
-    rotorvib.pipeline.warm_start). Their results must agree byte for byte: one comparison checks
-    that a run is deterministic, and that neither sharding nor the warm start changes a result."""
+    (:data:`REDUCED_SHARDED`). Their results must agree byte for byte: one comparison checks
+    that a run is deterministic, and that sharding changes no result."""
     compile_the_engine()
     works = [copy_repository(root / name) for name in ("repo", "sharded")]
-    own_processes = {"ROTORVIB_NO_WARM_START": "1"}
     with ThreadPoolExecutor(len(works)) as pool:
-        list(pool.map(lambda run: snakemake(run[0], "-j2", *run[1], env=run[2]),
-                      zip(works, (REDUCED, REDUCED_SHARDED), (None, own_processes))))
+        list(pool.map(lambda run: snakemake(run[0], "-j2", *run[1]),
+                      zip(works, (REDUCED, REDUCED_SHARDED))))
     return works
 
 

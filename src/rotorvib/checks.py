@@ -1,41 +1,60 @@
 """Argument checks shared by the public entry points: each raises ``ValueError`` naming the
-argument, its value and what is allowed, before any work is done."""
+argument, its value and what is allowed, before any work is done, and returns the value as a
+Python ``float`` or ``int`` (a numpy scalar of any width is normalised: a ``float16`` mass is
+not kept to overflow later, an ``int8`` count not kept to wrap)."""
 
 from __future__ import annotations
 
 import numbers
+import sys
 
 import numpy as np
+
+#: The least magnitude of a normal double: a nonzero number below it (subnormal, 5e-324 for one)
+#: has lost precision, passes any bound "> 0" and underflows to 0 in a product.
+SMALLEST_NORMAL = sys.float_info.min
+#: The magnitudes a scalar argument may have (or 0, where 0 is allowed): products and powers
+#: of a few of them stay finite and normal in double precision (1e100 cubed is 1e300), and no
+#: quantity of a rotor, in SI units, lies outside.
+MAGNITUDES = (1e-100, 1e100)
 
 
 def number(name: str, value, *, minimum: float = 0.0, inclusive: bool = False,
            what: str = "") -> float:
-    """``value`` as a float; ``ValueError`` naming ``name`` unless it is finite and above
-    ``minimum`` (or equal to it, if ``inclusive``).  ``what`` adds a reason to the message."""
+    """``value`` as a float; ``ValueError`` naming ``name`` unless it is finite, above
+    ``minimum`` (or equal to it, if ``inclusive``) and 0 or within :data:`MAGNITUDES` in
+    magnitude.  ``what`` adds a reason to the message."""
     want = f"must be a finite number {'>=' if inclusive else '>'} {minimum:g}{what}"
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise ValueError(f"{name} = {value!r}: {want}")
     ok = np.isfinite(value) and (value >= minimum if inclusive else value > minimum)
     if not ok:
         raise ValueError(f"{name} = {float(value)!r}: {want}")
+    if value != 0 and not MAGNITUDES[0] <= abs(value) <= MAGNITUDES[1]:
+        raise ValueError(f"{name} = {float(value)!r}: {want}, between {MAGNITUDES[0]:g} and "
+                         f"{MAGNITUDES[1]:g} in magnitude (beyond, products underflow or "
+                         "overflow; a subnormal number has lost precision already)")
     return float(value)
 
 
 def require(obj, positive=(), nonnegative=()) -> None:
     """``ValueError`` naming the first field of ``obj`` that is not a finite number > 0 (those in
-    ``positive``) or >= 0 (those in ``nonnegative``)."""
+    ``positive``) or >= 0 (those in ``nonnegative``); each field is then set to its value as a
+    Python float (on a frozen dataclass too)."""
     for names, inclusive in ((positive, False), (nonnegative, True)):
         for name in names:
-            number(f"{type(obj).__name__}.{name}", getattr(obj, name), inclusive=inclusive)
+            value = number(f"{type(obj).__name__}.{name}", getattr(obj, name),
+                           inclusive=inclusive)
+            object.__setattr__(obj, name, value)
 
 
 def finite_array(name: str, value, *, shape: tuple | None = None, dtype=float) -> np.ndarray:
     """``value`` as an array of ``dtype``; ``ValueError`` unless it holds real numbers (not
-    complex, text or objects), every entry is finite and, where ``shape`` is given, the shape
-    matches (``None`` entries match any length)."""
+    booleans, complex, text or objects), every entry is finite and, where ``shape`` is given,
+    the shape matches (``None`` entries match any length)."""
     try:
         given = np.asarray(value)
-        if given.dtype.kind not in "biuf" + ("c" if np.dtype(dtype).kind == "c" else ""):
+        if given.dtype.kind not in "iuf" + ("c" if np.dtype(dtype).kind == "c" else ""):
             raise TypeError(f"entries of type {given.dtype}")
         a = given.astype(dtype)
     except (TypeError, ValueError) as error:
@@ -53,11 +72,26 @@ def finite_array(name: str, value, *, shape: tuple | None = None, dtype=float) -
     return a
 
 
-def integer(name: str, value, minimum: int) -> int:
+def in_domain(name: str, values: np.ndarray, holds: np.ndarray, allowed: str) -> np.ndarray:
+    """``values`` itself; ``ValueError`` naming ``name`` and its first entry where ``holds`` is
+    false (``allowed`` says what is allowed) or that is neither 0 nor within
+    :data:`MAGNITUDES` in magnitude."""
+    size = np.abs(values)
+    holds = holds & ((values == 0) | ((size >= MAGNITUDES[0]) & (size <= MAGNITUDES[1])))
+    if not np.all(holds):
+        bad = np.broadcast_to(values, np.shape(holds))[~np.broadcast_to(holds, np.shape(holds))]
+        raise ValueError(f"{name} = {bad.flat[0].item()!r}: must be {allowed}, and 0 or between "
+                         f"{MAGNITUDES[0]:g} and {MAGNITUDES[1]:g} in magnitude")
+    return values
+
+
+def integer(name: str, value, minimum: int, maximum: int | None = None) -> int:
     """``value`` as an ``int``; ``ValueError`` unless it is an integer (not a float or bool)
-    ``>= minimum``."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < minimum:
-        raise ValueError(f"{name} = {value!r}: must be an integer >= {minimum}")
+    ``>= minimum`` (and ``<= maximum``, when given)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral) or \
+            value < minimum or (maximum is not None and value > maximum):
+        upper = f" and <= {maximum}" if maximum is not None else ""
+        raise ValueError(f"{name} = {value!r}: must be an integer >= {minimum}{upper}")
     return int(value)
 
 

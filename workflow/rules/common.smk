@@ -7,13 +7,12 @@ from types import SimpleNamespace
 from snakemake.exceptions import WorkflowError
 
 from rotorvib.pipeline.config import (
-    INPUT_PRODUCERS_PARAM,
     ConfigError,
     check_config,
-    job_config,
     load_yaml,
     workflow_config,
 )
+from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
 from rotorvib.pipeline.report import entry_label, label, names_in, subcategory
@@ -320,7 +319,7 @@ def add_code_fingerprints(rules):
 
 def producer_of(path):
     """The rule that makes ``path`` in this run and the SHA-256 of the configuration it records
-    in it (its parameters for that file's wildcards, rotorvib.io.datasets.job_config).
+    in it (its parameters for that file's wildcards, rotorvib.pipeline.job.job_config).
     """
     maker = producer(workflow.rules, path)
     given = SimpleNamespace(**wildcards(maker, path))
@@ -343,7 +342,7 @@ def input_producers(wildcards, input):
 
 
 def add_input_checks(rules):
-    """Give every script rule the parameter rotorvib.pipeline.config.INPUT_PRODUCERS_PARAM."""
+    """Give every script rule the parameter rotorvib.pipeline.job.INPUT_PRODUCERS_PARAM."""
     for each in rules:
         if script_path(each) is not None:
             add_params(each, **{INPUT_PRODUCERS_PARAM: input_producers})

@@ -5,7 +5,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 import sys
 
 from rotorvib.methods.multiple_scales import ConstantsDiverged
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.a.studies import responses_dataset
 

@@ -2,7 +2,7 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
 from rotorvib.papers.b.law import law_dataset
 from rotorvib.papers.b.setup import Setup

@@ -3,7 +3,7 @@ paper B's Figs 2-3)."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.boundaries import boundary_dataset
 

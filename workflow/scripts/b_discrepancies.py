@@ -8,7 +8,7 @@ import sys
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.discrepancies import hypotheses, inversions, quantities

@@ -2,7 +2,7 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.b.responses import figure_runs, time_response_dataset
 from rotorvib.papers.b.setup import Setup

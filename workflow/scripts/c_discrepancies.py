@@ -6,7 +6,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 from rotorvib.comparison import read_paper_values, read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.c.discrepancies import (MODELS, hypotheses, inversions,
                                              printed_determinant_ga)

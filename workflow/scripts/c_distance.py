@@ -4,7 +4,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 import numpy as np
 
-from rotorvib.pipeline.config import job_config
+from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.papers.c.studies import distance_dataset

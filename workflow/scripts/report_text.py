@@ -9,7 +9,7 @@ from pathlib import Path
 
 from rotorvib import discrepancy
 from rotorvib.pipeline import report, report_pages
-from rotorvib.pipeline.config import load_yaml
+from rotorvib.pipeline.strict_yaml import load_yaml
 
 job.start(snakemake.log[0])
 

@@ -11,7 +11,7 @@ checksum is itself an error: a dataset damaged or edited after its rule wrote it
 overwritten with NaN, two variables swapped, a coordinate, a unit or the provenance edited)
 stops the reading job with an error that names the file, what changed and the rule to rerun.
 Given the rule that makes the file in this run and the hash of the configuration it uses (the
-workflow passes both as the parameter :data:`rotorvib.pipeline.config.INPUT_PRODUCERS_PARAM`), it also
+workflow passes both as the parameter :data:`rotorvib.pipeline.job.INPUT_PRODUCERS_PARAM`), it also
 refuses a dataset made by another rule or under another configuration (copied in, restored from
 another run, or marked current with ``--touch``).
 """

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import root
 
-from rotorvib.checks import finite_array
+from rotorvib.checks import finite_array, number
 
 
 class ConstantsDiverged(ArithmeticError):
@@ -75,7 +75,9 @@ class MultipleScales:
         return cls(J=J, T=T, eigenvalues=lam, modes=phi, second_order=c)
 
     def resonances(self, tolerance: float = 0.05) -> list[Resonance]:
-        """Triads with ``|lambda_j + lambda_k - lambda_l| < tolerance * max|lambda|``."""
+        """Triads with ``|lambda_j + lambda_k - lambda_l| < tolerance * max|lambda|``
+        (``tolerance`` finite and >= 0)."""
+        tolerance = number("tolerance", tolerance, inclusive=True)
         lam = self.eigenvalues
         scale = np.max(np.abs(lam))
         found = []

@@ -34,18 +34,6 @@ if TYPE_CHECKING:
     import jsonschema
 
 
-#: The parameter through which the workflow gives a job the rule that makes each input dataset
-#: and the hash of that rule's configuration (checked by
-#: :func:`rotorvib.io.datasets.read_dataset`).
-INPUT_PRODUCERS_PARAM = "input_producers"
-
-
-def job_config(params) -> dict:
-    """The configuration a job records in its datasets: its rule's parameters (a mapping, e.g.
-    ``snakemake.params``) without the input check :data:`INPUT_PRODUCERS_PARAM` itself."""
-    return {k: v for k, v in params.items() if k != INPUT_PRODUCERS_PARAM}
-
-
 def typed_overrides(overrides: dict) -> dict:
     """``--config`` overrides with the values inside nested keys read as YAML.
 

@@ -1,4 +1,4 @@
-"""The process of one workflow job: its start-up and its log.
+"""The process of one workflow job: its start-up, its log and the configuration it records.
 
 Every job script imports this module before anything else and calls :func:`start` once its
 imports are done (a module it imports by name included). A job is a fresh Python process whose
@@ -11,18 +11,26 @@ later collection scans, the one at exit included, then switches the collector on
 own work. ``python -m benchmarks.job_start`` measures what this saves a job that imports the
 engine, xarray and matplotlib.
 
-Before that, a job that the server of its Snakemake run can run (rotorvib.pipeline.warm_start:
-a process that has imported those libraries already) is handed over to it, and this process
-only waits for its exit status.
+The module imports nothing of the workflow's machinery (the configuration's loader and checks,
+the fingerprints, the report): a job's code fingerprint holds the science it runs and this
+start-up, so that an edit of the machinery reruns no job.
 """
 
 import gc
 import sys
 
-from rotorvib.pipeline.warm_start import hand_over
-
-hand_over()       # returns when this process is to run the job itself
 gc.disable()
+
+#: The parameter through which the workflow gives a job the rule that makes each input dataset
+#: and the hash of that rule's configuration (checked by
+#: :func:`rotorvib.io.datasets.read_dataset`).
+INPUT_PRODUCERS_PARAM = "input_producers"
+
+
+def job_config(params) -> dict:
+    """The configuration a job records in its datasets: its rule's parameters (a mapping, e.g.
+    ``snakemake.params``) without the input check :data:`INPUT_PRODUCERS_PARAM` itself."""
+    return {k: v for k, v in params.items() if k != INPUT_PRODUCERS_PARAM}
 
 
 def start(log: str) -> None:

@@ -34,13 +34,17 @@ from typing import Callable
 import numpy as np
 import xarray as xr
 
+from rotorvib.checks import integer
+
 Runner = Callable[[list], np.ndarray]
 
 
 def shard_rows(n_runs: int, shard: int, shards: int) -> np.ndarray:
-    """The runs of shard ``shard`` of ``shards``: ``shard, shard + shards, ...``."""
-    if not 0 <= shard < shards:
-        raise ValueError(f"shard {shard} must lie in [0, {shards})")
+    """The runs of shard ``shard`` of ``shards``: ``shard, shard + shards, ...``; each argument
+    an integer, ``n_runs >= 0``, ``shards >= 1`` and ``0 <= shard < shards`` (``ValueError``
+    naming the argument otherwise)."""
+    n_runs, shards = integer("n_runs", n_runs, 0), integer("shards", shards, 1)
+    shard = integer("shard", shard, 0, shards - 1)
     return np.arange(shard, n_runs, shards)
 
 
@@ -120,7 +124,7 @@ def _study_job(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
     (named input ``shards``) builds the dataset with the runner ``gathered(shard datasets)``;
     the whole study builds it with ``runs``.  ``seed`` goes into the provenance."""
     from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
-    from rotorvib.pipeline.config import job_config
+    from rotorvib.pipeline.job import job_config
 
     provenance = Provenance(snakemake.rule, job_config(snakemake.params), seed)
     wildcards = dict(snakemake.wildcards.items())

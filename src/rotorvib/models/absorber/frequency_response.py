@@ -114,7 +114,7 @@ def rotor_peak(rotor: Rotor, sets, *, samples: int = 4001) -> tuple[float, float
     design: sampled on ``[w_1 / 2, 2 w_n]`` around its undamped natural frequencies ``w_i``
     (log-spaced), then refined by a bounded scalar search between the neighbours of the best
     sample."""
-    samples = integer("samples", samples, 3)
+    samples = integer("samples", samples, 3, 1_000_000)
     w_nat = natural_frequencies(rotor, sets)
     w = np.geomspace(w_nat[0] / 2, 2 * w_nat[-1], samples)
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from rotorvib.checks import require
+from rotorvib.checks import SMALLEST_NORMAL, require
 
 #: Order of the eight design variables of the dual absorber (paper C, section 4).
 DUAL_NAMES = ("m1", "m2", "k1", "k2", "c1", "c2", "d1", "d2")
@@ -22,7 +22,8 @@ DUAL_NAMES = ("m1", "m2", "k1", "k2", "c1", "c2", "d1", "d2")
 class Rotor:
     """Disk on a torsional shaft (paper C, Table 1): mass ``M`` (kg), radius ``R`` (m), shaft
     stiffness ``k_t`` (N m/rad), torque amplitude ``Gamma0`` (N m); polar inertia
-    ``J = J_factor * M R^2`` (J_factor = 1/2 for a solid disk)."""
+    ``J = J_factor * M R^2`` (J_factor = 1/2 for a solid disk).  Each a finite number > 0;
+    ``J`` and ``omega_n = sqrt(k_t / J)`` normal and finite (``ValueError`` otherwise)."""
 
     M: float
     R: float
@@ -32,6 +33,10 @@ class Rotor:
 
     def __post_init__(self):
         require(self, ("M", "R", "k_t", "Gamma0", "J_factor"), ())
+        if not (self.J >= SMALLEST_NORMAL and np.isfinite(self.omega_n) and self.omega_n > 0):
+            raise ValueError(f"Rotor.R = {self.R!r} with M = {self.M!r} and J_factor = "
+                             f"{self.J_factor!r}: the inertia J_factor M R^2 = {self.J!r} and "
+                             f"omega_n = sqrt(k_t / J) must be normal, finite numbers")
 
     @property
     def J(self) -> float:

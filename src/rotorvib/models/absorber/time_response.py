@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorvib.checks import number
+from rotorvib.checks import integer, number
 from rotorvib.methods.integrate import integrate
 from rotorvib.models.absorber.frequency_response import matrices
 from rotorvib.models.absorber.parameters import Rotor
@@ -91,10 +91,22 @@ def linear_response(rotor: Rotor, sets, omega: float, t) -> np.ndarray:
     return y[:, :n]
 
 
+#: Samples of one response at most (8 bytes each per state variable).
+MAX_SAMPLES = 10_000_000
+
+
 def response_times(omega: float, t_end: float, samples_per_period: int) -> np.ndarray:
-    """Times ``0 .. t_end`` at ``samples_per_period`` samples per forcing period ``2 pi/omega``."""
+    """Times ``0 .. t_end`` at ``samples_per_period`` samples per forcing period ``2 pi/omega``;
+    ``ValueError`` naming the argument when one is out of its domain or the times would be more
+    than :data:`MAX_SAMPLES`."""
     period = 2 * np.pi / number("omega", omega, what=" (forcing frequency, rad/s)")
-    return np.linspace(0.0, t_end, int(round(t_end / period * samples_per_period)) + 1)
+    t_end = number("t_end", t_end, what=" (s)")
+    per_period = integer("samples_per_period", samples_per_period, 2)
+    samples = t_end / period * per_period
+    if samples > MAX_SAMPLES:
+        raise ValueError(f"t_end = {t_end!r}: {samples:.3g} samples at omega = {omega!r} and "
+                         f"{per_period} per period; at most {MAX_SAMPLES}")
+    return np.linspace(0.0, t_end, int(round(samples)) + 1)
 
 
 def undamped_resonance_envelope(rotor: Rotor, t):

@@ -7,6 +7,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from rotorvib.checks import instance, number
 from rotorvib.models.absorber.parameters import AbsorberSet, Rotor
 
 
@@ -17,9 +18,12 @@ def den_hartog_single(rotor: Rotor, m: float, d: float) -> AbsorberSet:
     ``2m``, spring ``4k`` and damper ``4c`` on a main mass ``J/d^2``, so with
     ``mu = 2 m d^2 / J``: ``omega_a = omega_n / (1 + mu)`` (``omega_a^2 = 2k/m``) and
     ``zeta = sqrt(3 mu / (8 (1 + mu)^3))`` (``zeta = c / (m omega_a)``)
-    [Den Hartog, Mechanical Vibrations, 1956, section 3.3].
+    [Den Hartog, Mechanical Vibrations, 1956, section 3.3].  ``m`` and ``d`` are finite and
+    > 0 (kg and m), and so is ``mu``, each within :data:`rotorvib.checks.MAGNITUDES`.
     """
-    mu = 2 * m * d**2 / rotor.J
+    rotor = instance("rotor", rotor, Rotor)
+    m, d = number("m", m, what=" (kg)"), number("d", d, what=" (m)")
+    mu = number("the mass ratio 2 m d^2 / J of m and d", 2 * m * d * d / rotor.J)
     omega_a = rotor.omega_n / (1 + mu)
     zeta = np.sqrt(3 * mu / (8 * (1 + mu) ** 3))
     return AbsorberSet(m=m, k=m * omega_a**2 / 2, c=zeta * m * omega_a, d=d)
@@ -38,7 +42,11 @@ def mass_ratio_family(reference, mu: float, construction: str = "tuned"):
     """Dual absorber with ``m2 = mu m1``; ``tuned`` also sets ``k2 = mu k1`` (set 2 keeps the
     tuning ``2 k2 / m2 = 2 k1 / m1`` of the reference), ``mass_only`` keeps the reference's
     ``k2``; ``c1, c2, d1, d2`` as in the reference.  For the paper's Table 2
-    (``m2/m1 = k2/k1 = 0.85``) ``mu = 0.85`` returns Table 2 itself under both."""
+    (``m2/m1 = k2/k1 = 0.85``) ``mu = 0.85`` returns Table 2 itself under both.  ``mu`` is
+    finite and > 0; ``reference`` two :class:`AbsorberSet`."""
+    mu = number("mu", mu, what=" (m2 / m1)")
+    if len(reference) != 2 or not all(isinstance(s, AbsorberSet) for s in reference):
+        raise ValueError(f"reference = {reference!r}: must be two AbsorberSet")
     first, second = reference
     if construction == "tuned":
         return first, replace(second, m=mu * first.m, k=mu * first.k)

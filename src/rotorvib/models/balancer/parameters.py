@@ -19,6 +19,10 @@ from rotorvib.checks import integer, require
 
 from rotorvib.models.balancer import kinematics
 
+#: Balls in one race at most: a bound on the size of the state (each ball adds two variables),
+#: not a physical one; the papers have two.
+MAX_BALLS = 64
+
 
 @dataclass(frozen=True)
 class Dimensionless:
@@ -34,7 +38,7 @@ class Dimensionless:
         require(self, positive=("mu", "rho"), nonnegative=("zeta", "beta"))
         if not self.mu < 1:
             raise ValueError(f"Dimensionless.mu = {self.mu!r}: must lie in (0, 1) (m / M_t)")
-        integer("Dimensionless.n", self.n, 2)
+        object.__setattr__(self, "n", integer("Dimensionless.n", self.n, 2, MAX_BALLS))
 
     def balanced_angle(self) -> float:
         """Ball angle of the balanced state for two balls, ``arccos(-1/(2 rho))`` (rad)."""
@@ -56,7 +60,7 @@ class Balancer:
 
     def __post_init__(self):
         require(self, positive=("M", "m", "R", "k"), nonnegative=("eps", "c", "D"))
-        integer("Balancer.n", self.n, 2)
+        object.__setattr__(self, "n", integer("Balancer.n", self.n, 2, MAX_BALLS))
 
     @classmethod
     def from_paper_b(cls, *, M, k, R, m_bar, eps_bar, zeta, beta, n=2) -> "Balancer":

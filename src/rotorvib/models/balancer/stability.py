@@ -23,6 +23,7 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
+from rotorvib.checks import finite_array, in_domain
 from rotorvib.methods.codegen import cached_lambdify
 
 MU, RHO, ZETA, BETA, OMEGA = sp.symbols("mu rho zeta beta Omega", positive=True)
@@ -110,6 +111,23 @@ def _numeric_pencil():
                  for i, name in enumerate("MCK"))
 
 
+def groups(mu, rho, zeta, beta, omega) -> list[np.ndarray]:
+    """The five groups, checked and broadcast together: ``0 < mu <= 1/n`` (at ``1/n`` the disk
+    has no mass left and the mass matrix is singular: ``numpy.linalg.LinAlgError``),
+    ``rho >= 1/2`` (the balanced state exists, ``cos a = -1/(2 rho)``; at ``1/2`` the balls lie
+    together), ``zeta, beta >= 0``, ``omega`` of either sign; each finite, not bool or text, and
+    0 or within :data:`rotorvib.checks.MAGNITUDES`. ``ValueError`` naming the first group
+    outside."""
+    named = {name: finite_array(name, value) for name, value in
+             zip(("mu", "rho", "zeta", "beta", "omega"), (mu, rho, zeta, beta, omega))}
+    domain = {"mu": (lambda v: (v > 0) & (v <= 1 / N_BALLS), f"in (0, 1/{N_BALLS}]"),
+              "rho": (lambda v: v >= 0.5, ">= 1/2"), "zeta": (lambda v: v >= 0, ">= 0"),
+              "beta": (lambda v: v >= 0, ">= 0"), "omega": (lambda v: np.isfinite(v), "real")}
+    for name, (holds, allowed) in domain.items():
+        in_domain(name, named[name], holds(named[name]), allowed)
+    return np.broadcast_arrays(*named.values())
+
+
 def _stack(f, shape, *values):
     entries = f(*values)          # the 16 entries, row by row, scalars or arrays
     out = np.empty(shape + (16,))
@@ -120,9 +138,9 @@ def _stack(f, shape, *values):
 
 def jacobian(mu, rho, zeta, beta, omega) -> np.ndarray:
     """First-order system matrix at the balanced state, shape ``broadcast(...) + (8, 8)``
-    (state ``[u, v, a1, a2, u', v', a1', a2']``, time unit ``1/w_n``)."""
-    values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (mu, rho, zeta, beta,
-                                                                        omega)))
+    (state ``[u, v, a1, a2, u', v', a1', a2']``, time unit ``1/w_n``); the groups' domain is
+    that of :func:`groups`."""
+    values = groups(mu, rho, zeta, beta, omega)
     shape = values[0].shape
     fM, fC, fK = _numeric_pencil()
     M, C, K = (_stack(f, shape, *values) for f in (fM, fC, fK))
@@ -161,9 +179,9 @@ def polynomial_roots(mu, rho, zeta, beta, omega) -> np.ndarray:
     """The eight roots of ``det(lambda^2 M + lambda C + K) = 0`` (the multiple-scales
     eigenvalue problem of the 4x4 lambda-matrix, paper A eqs 23-33), through the symbolic
     characteristic polynomial and stacked companion matrices: a code path separate from
-    :func:`eigenvalues` (Lyapunov's 8x8 Jacobian)."""
-    values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (mu, rho, zeta, beta,
-                                                                        omega)))
+    :func:`eigenvalues` (Lyapunov's 8x8 Jacobian); the groups' domain is that of
+    :func:`groups`."""
+    values = groups(mu, rho, zeta, beta, omega)
     shape = values[0].shape
     coeffs = np.stack([np.broadcast_to(np.asarray(c, dtype=float), shape)
                        for c in _coefficient_function()(*values)], axis=-1)

@@ -73,10 +73,12 @@ class TrackedEigenvalue:
         """``Re lambda`` at ``z``; NaN where the linearisation does not exist: the mass matrix
         is singular (balls so heavy, p ~ 1e17, that mu rounds to 1/2) or not finite -- where a
         corrector step far outside the plane can land (found by the configuration fuzzer), and
-        which :func:`rotorvib.methods.continuation.trace` treats as a failed step."""
+        which :func:`rotorvib.methods.continuation.trace` treats as a failed step; also where
+        the groups leave the linearisation's domain (rotorvib.models.balancer.stability.groups:
+        a ratio beyond 1e100, for one)."""
         try:
             return float(self.split(z)[0].real)
-        except np.linalg.LinAlgError:
+        except (np.linalg.LinAlgError, ValueError):
             return math.nan
 
     def accept(self, z) -> None:
