@@ -1,12 +1,14 @@
 """Damaged caches heal: a numba, codegen or fingerprint cache file that is not what the package
-wrote is detected by its checksum, ignored with a one-line warning and rebuilt, never a crash
+wrote for this user is detected by its keyed checksum, ignored with a one-line warning and rebuilt, never a crash
 or a changed result; a held compile lock is said, then refused, naming its file."""
 
 import fcntl
+import hashlib
 import importlib.util
 import json
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import time
@@ -16,6 +18,7 @@ import sympy as sp
 
 from conftest import ROOT
 from rotorvib.pipeline import fingerprint
+from rotorvib.io import cache_files
 from rotorvib.io.cache_files import read_checked, write_checked
 from rotorvib.methods import codegen, numba_cache
 from rotorvib.methods.numba_cache import MANIFEST, compile_lock, drop_if_stale, record
@@ -143,6 +146,31 @@ def test_generated_code_runs_only_as_written(tmp_path, capsys):
     write_checked(path, "raise SystemError('boom')\n")
     assert square()(3.0) == 9.0
     assert "damaged cache file" in capsys.readouterr().err
+    # planted with a valid SHA-256 of its text (all a planter without this user's key can
+    # compute): not run
+    path.write_text(f"{hashlib.sha256(planted.encode()).hexdigest()}\n{planted}")
+    assert square()(3.0) == 9.0
+    assert "damaged cache file" in capsys.readouterr().err
+
+
+def test_the_cache_key_is_private_and_without_one_nothing_is_cached(tmp_path, monkeypatch):
+    """The key is made once, mode 600 in a folder of mode 700; a key others can read is no key:
+    then nothing is written or read back, and results are derived as without a cache."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    cache_files.user_key.cache_clear()
+    try:
+        key = cache_files.user_key()
+        path = cache_files.key_file()
+        assert key is not None and stat.S_IMODE(path.stat().st_mode) == 0o600
+        assert stat.S_IMODE(path.parent.stat().st_mode) == 0o700
+        assert write_checked(tmp_path / "entry", "x") and read_checked(tmp_path / "entry") == "x"
+        os.chmod(path, 0o644)
+        cache_files.user_key.cache_clear()
+        assert cache_files.user_key() is None
+        assert not write_checked(tmp_path / "other", "x") and not (tmp_path / "other").exists()
+        assert read_checked(tmp_path / "entry") is None
+    finally:
+        cache_files.user_key.cache_clear()
 
 
 @pytest.mark.parametrize("stored", ['{"a": 1}', "[1, 2]", '"not a digest"', "null"])
