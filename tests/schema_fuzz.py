@@ -120,6 +120,51 @@ def mutations(config: dict) -> list[tuple[tuple, object]]:
             for value in variants(_get(config, path), schema_node(path))]
 
 
+#: What a node is replaced by in the structure fuzz: texts (empty, padded, with a newline, a
+#: template tag, a number as text), the other YAML kinds, an empty and a deep container.
+REPLACEMENTS = ["text", "", " padded", "line\n", "{{ 7*191 }}", "1e-9", None, True, [], {},
+                [[[[["deep"]]]]], {"nested": {"deeper": 1}}]
+
+
+def nodes(config, path=()) -> list[tuple]:
+    """The path of every node of ``config`` (mappings, lists and scalars), the root left out."""
+    found = [path] if path else []
+    if isinstance(config, dict):
+        found += [p for key, value in config.items() for p in nodes(value, path + (key,))]
+    elif isinstance(config, list):
+        found += [p for i, value in enumerate(config) for p in nodes(value, path + (i,))]
+    return found
+
+
+def structure_mutations(config: dict) -> list[tuple[str, tuple, object]]:
+    """Every change of shape of ``config``, as (kind, path, value): a node replaced by each of
+    :data:`REPLACEMENTS` or wrapped in a list, a mapping's key removed or renamed (``value``:
+    the new name, with a space, a dot or a newline), a key added to a mapping."""
+    found = []
+    for path in nodes(config):
+        found += [("replace", path, value) for value in REPLACEMENTS]
+        found.append(("replace", path, [_get(config, path)]))
+        if isinstance(path[-1], str):
+            found.append(("remove", path, None))
+            found += [("rename", path, path[-1] + suffix) for suffix in (" ", ".x", "\n", "_x")]
+        if isinstance(_get(config, path), dict):
+            found.append(("add", path + ("unknown",), 1.0))
+    return found
+
+
+def apply(config: dict, kind: str, path: tuple, value) -> dict:
+    """``config`` with one of :func:`structure_mutations` applied (a copy)."""
+    out = copy.deepcopy(config)
+    parent = _get(out, path[:-1])
+    if kind in ("replace", "add"):
+        parent[path[-1]] = value
+    elif kind == "remove":
+        del parent[path[-1]]
+    else:
+        parent[value] = parent.pop(path[-1])
+    return out
+
+
 def _get(config, path):
     for part in path:
         config = config[part]

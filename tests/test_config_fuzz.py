@@ -1,9 +1,12 @@
 """Every number of the reduced configuration moved, one at a time, to the values of the fuzzer
 (tests/schema_fuzz.py: the schema's bounds, just inside an open bound, zero, a sign change,
-three orders of magnitude): the checks run before any job either accept the configuration or
+three orders of magnitude), and its shape changed (texts, other kinds, containers, keys
+removed, renamed or added): the checks run before any job either accept the configuration or
 refuse it with messages that each name a config key, and never crash."""
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import schema_fuzz
 
@@ -38,3 +41,27 @@ def test_a_vanishing_sample_step_is_refused_not_a_crash(sample_dt):
     """Found by the fuzzer: the sample count of a subnormal step overflowed an integer."""
     mutated = schema_fuzz.mutate(BASE, ("paper_b", "balance", "sample_dt"), sample_dt)
     assert "'paper_b.balance.sample_dt'" in schema_fuzz.verdict(mutated)
+
+
+STRUCTURE = schema_fuzz.structure_mutations(BASE)
+
+
+def _refusal_names_its_keys(message: str | None) -> bool:
+    return message is None or all(line.strip().startswith("config key '")
+                                  for line in message.splitlines()[1:])
+
+
+@settings(max_examples=400, deadline=None, derandomize=True)
+@given(st.sampled_from(STRUCTURE))
+def test_every_change_of_shape_is_accepted_or_refused_naming_its_keys(mutation):
+    message = schema_fuzz.verdict(schema_fuzz.apply(BASE, *mutation))
+    assert _refusal_names_its_keys(message), (mutation, message)
+
+
+@pytest.mark.parametrize("kind", ["remove", "rename", "add"])
+def test_every_key_change_of_paper_b_machine_is_refused(kind):
+    """Each key of a section the schema closes: removed, renamed or added, it is refused."""
+    for mutation in STRUCTURE:
+        if mutation[0] == kind and mutation[1][:2] == ("paper_b", "machine"):
+            message = schema_fuzz.verdict(schema_fuzz.apply(BASE, *mutation))
+            assert message and "'paper_b.machine" in message, mutation

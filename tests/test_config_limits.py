@@ -126,3 +126,21 @@ def test_a_value_inside_itself_or_too_deep_is_refused_as_built():
         check_value(deep, "module config")
     shared = ["x"] * 100
     check_value({"a": [shared] * 100}, "fine")       # 10 100 values, each counted
+
+
+@pytest.mark.parametrize("entries, refusal", [
+    (["paper_b.shards=2"], "'paper_b.shards' is not a top-level key; write a nested key as YAML"),
+    (["paper_b={shards: 2}", "results/paper_c/figures/fig5.png"],
+     "--config 'results/paper_c/figures/fig5.png': not KEY=VALUE; a target written after"),
+    (["paper_b={shards: 2, shards: 3}"], "--config paper_b:1:13: duplicate key 'shards'"),
+    (["paper_b={shards: 0777}"], "--config paper_b.shards:1:1: '0777' reads differently"),
+    (["paper_b={shards: -2}"], "config key 'paper_b.shards': -2 is not allowed"),
+])
+def test_the_checker_reads_command_line_entries_as_the_workflow_would(entries, refusal):
+    """Snakemake stops on a dotted key or a target after ``--config`` with a traceback of its
+    own, and keeps a duplicate key's last value; the checker names each."""
+    run = subprocess.run([sys.executable, "-m", "rotorvib.pipeline.config", "config/config.yaml",
+                          "--config", *entries], capture_output=True, text=True, timeout=10,
+                         cwd=ROOT, preexec_fn=_bounded)
+    assert run.returncode == 1 and refusal in run.stdout, run.stdout + run.stderr[-2000:]
+    assert "Traceback" not in run.stderr

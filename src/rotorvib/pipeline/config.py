@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 import sys
 import unicodedata
 from functools import cache
@@ -28,7 +29,8 @@ from typing import TYPE_CHECKING, Any
 import yaml
 
 from rotorvib.pipeline.config_checks import problems
-from rotorvib.pipeline.strict_yaml import ConfigError, check_value, load_value, load_yaml
+from rotorvib.pipeline.strict_yaml import (ConfigError, DuplicateKey, check_shape, check_value,
+                                       load_value, load_yaml)
 
 if TYPE_CHECKING:
     import jsonschema
@@ -317,30 +319,79 @@ def check_config(config: dict, schema: dict) -> dict:
     return checked
 
 
-def check_files(paths, schema_path: str | Path = "config/schema.yaml") -> dict:
-    """The checked configuration (:func:`check_config`) of ``paths`` merged in order;
-    :class:`ConfigError` otherwise."""
+#: A ``--config`` key as Snakemake accepts it (snakemake.cli.parse_config).
+_TOP_KEY = re.compile(r"[a-zA-Z_][\w-]*\w$")
+
+
+def command_line_overrides(entries) -> dict:
+    """``--config KEY=VALUE ...`` entries as Snakemake reads them (an integer, a number,
+    ``true``/``false``, else YAML read as text, else the text), each value's shape checked
+    first; :class:`ConfigError` naming the entry for what Snakemake would stop on with a
+    traceback: an entry without ``=`` (a target written after ``--config`` is taken for one)
+    and a key that is not a top-level name (``paper_b.shards=2``)."""
+    overrides: dict = {}
+    for entry in entries:
+        key, sep, text = entry.partition("=")
+        if not sep:
+            raise ConfigError(f"--config {entry!r}: not KEY=VALUE; a target written after "
+                              "--config is read as one of its entries: put targets first")
+        if not _TOP_KEY.match(key):
+            raise ConfigError(f"--config {entry!r}: {key!r} is not a top-level key; write a "
+                              "nested key as YAML, e.g. paper_b='{shards: 2}'")
+        overrides[key] = _snakemake_value(text, f"--config {key}")
+    return typed_overrides(overrides)
+
+
+def _snakemake_value(text: str, name: str):
+    """One ``--config`` value read as Snakemake reads it, its YAML shape checked first."""
+    for parse in (int, float):
+        try:
+            return parse(text)
+        except ValueError:
+            pass
+    if text in ("true", "false", "True", "False"):
+        return text.lower() == "true"
+    check_shape(text, name)
+    try:
+        load_value(text, name)            # a key given twice, which Snakemake would drop
+    except (yaml.YAMLError, ConfigError) as error:
+        if isinstance(error, DuplicateKey):
+            raise
+    try:
+        return yaml.load(text, Loader=yaml.BaseLoader)
+    except yaml.YAMLError:
+        return text
+
+
+def check_files(paths, schema_path: str | Path = "config/schema.yaml", overrides=()) -> dict:
+    """The checked configuration (:func:`check_config`) of ``paths`` merged in order, then the
+    ``--config`` entries ``overrides`` (:func:`command_line_overrides`); :class:`ConfigError`
+    otherwise."""
     config: dict = {}
     for path in paths:
         config = merge(config, load_yaml(path))
+    config = merge(config, command_line_overrides(overrides))
     return check_config(config, load_yaml(schema_path))
 
 
 def main(argv=None) -> int:
-    """``python -m rotorvib.pipeline.config [--schema S] FILE...``: 0 and "valid" or 1 and the errors."""
+    """``python -m rotorvib.pipeline.config [--schema S] FILE... [--config KEY=VALUE...]``: 0 and
+    "valid" or 1 and the errors."""
     import argparse
 
     parser = argparse.ArgumentParser(prog="python -m rotorvib.pipeline.config",
-                                     description="Check configuration files as the workflow does.")
+                                     description="Check configuration files and --config "
+                                                 "entries as the workflow does.")
     parser.add_argument("--schema", default="config/schema.yaml")
     parser.add_argument("files", nargs="+")
+    parser.add_argument("--config", nargs="*", default=[], metavar="KEY=VALUE")
     args = parser.parse_args(argv)
     try:
-        check_files(args.files, args.schema)
+        check_files(args.files, args.schema, args.config)
     except ConfigError as error:
         print(error)
         return 1
-    print(f"valid: {' + '.join(args.files)}")
+    print(f"valid: {' + '.join(args.files + [f'--config {c}' for c in args.config])}")
     return 0
 
 

@@ -41,6 +41,10 @@ class ConfigError(ValueError):
     where and why."""
 
 
+class DuplicateKey(ConfigError):
+    """A key given twice in one mapping (YAML would keep the last value silently)."""
+
+
 _CORE = [   # YAML 1.2 core schema: (tag, pattern, first characters)
     ("tag:yaml.org,2002:null", r"^(?:~|null|Null|NULL|)$", ["~", "n", "N", ""]),
     ("tag:yaml.org,2002:bool", r"^(?:true|True|TRUE|false|False|FALSE)$", list("tTfF")),
@@ -90,7 +94,7 @@ class _Strict:
                 raise ConfigError(f"{where}: {key!r} asks for Snakemake's YTE templates, which "
                                   "run Python from the file; configuration files here are data")
             if key in seen:
-                raise ConfigError(f"{where}: duplicate key {key!r} (first at line "
+                raise DuplicateKey(f"{where}: duplicate key {key!r} (first at line "
                                   f"{seen[key] + 1}); YAML would silently keep the last value")
             seen[key] = mark.line
         return super().construct_mapping(node, deep=deep)
