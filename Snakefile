@@ -5,7 +5,9 @@ from snakemake.utils import min_version
 min_version("9.0")
 
 
-configfile: "config/config.yaml"
+# The defaults beside this Snakefile, wherever Snakemake runs (`--directory`); a module given
+# its own `config:` skips them and merges that over them (workflow/rules/common.smk).
+configfile: f"{workflow.basedir}/config/config.yaml"
 
 
 include: "workflow/rules/common.smk"

@@ -24,6 +24,12 @@ def test_the_stylesheet_selects_snakemakes_content_view():
             f"{selector} matches no element of the pinned Snakemake's content view")
 
 
-def test_the_default_profile_ships_the_stylesheet():
-    profile = (ROOT / "profiles/default/config.yaml").read_text()
-    assert re.search(r"^report-stylesheet:\s*workflow/report/style.css\s*$", profile, re.MULTILINE)
+def test_every_shipped_profile_ships_the_stylesheet():
+    """A --workflow-profile replaces the default profile: each shipped one names the
+    stylesheet, so that the report looks the same whichever is given."""
+    profiles = sorted((ROOT / "profiles").glob("*/config.yaml")) + sorted(
+        (ROOT / "workflow/profiles").glob("*/config.yaml"))
+    assert len(profiles) >= 2
+    for path in profiles:
+        assert re.search(r"^report-stylesheet:\s*workflow/report/style.css\s*$",
+                         path.read_text(), re.MULTILINE), path

@@ -23,3 +23,12 @@ def test_rule_still_has_the_methods_the_workflow_uses():
         assert tuple(inspect.signature(method).parameters) == parameters, name
     for attribute in ("script", "basedir", "params", "name"):
         assert attribute in inspect.getsource(Rule.__init__), attribute
+
+
+def test_the_workflow_modifier_still_says_whether_a_module_has_its_own_config():
+    """rotorvib.pipeline.snakemake_rules.module_config_given reads these two attributes."""
+    from snakemake.modules import WorkflowModifier
+
+    source = inspect.getsource(WorkflowModifier.__init__)
+    assert "self.is_module = is_module" in source
+    assert "self.skip_configfile = config is not None" in source

@@ -20,7 +20,7 @@ rule run_record:
     # A change of the configuration or of the commit rewrites the record.
     params:
         config=config,
-        commit=git_state(),
+        commit=git_state(WORKFLOW_ROOT),
     message:
         "The run's configuration and commit, as files"
     script:
@@ -31,7 +31,7 @@ rule archive:
     input:
         results=all_results(),
         configuration=list(RUN_RECORD.values()) + configuration_files(),
-        code=["Snakefile", "LICENSE", "CITATION.cff"],
+        code=[source(name) for name in ("Snakefile", "LICENSE", "CITATION.cff")],
     output:
         archive=f"{RESULTS_DIR}/archive/rotorvib-results.tar.gz",
         # its SHA-256, to publish with it: a restore checks the archive against it

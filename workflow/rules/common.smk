@@ -10,33 +10,57 @@ from rotorvib.pipeline.config import (
     ConfigError,
     check_config,
     load_yaml,
+    merge,
     workflow_config,
 )
+from rotorvib.pipeline.strict_yaml import check_value
 from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
 from rotorvib.pipeline.report import entry_label, label, names_in, subcategory
 from rotorvib.pipeline.snakemake_rules import (
     add_params,
+    module_config_given,
     producer,
     script_path,
     wildcards,
 )
 
+# The workflow's own folder (this file is workflow/rules/common.smk in it): its schema and the
+# papers' data are read from there, so that it runs from another working directory
+# (`--directory`) or as a module of another workflow.
+WORKFLOW_ROOT = Path(str(workflow.current_basedir)).resolve().parents[1]
+
+
+def source(relative):
+    """A file of the workflow's own folder: as ``relative`` when Snakemake runs in that folder
+    (the paths the job records and the archive hold), else as an absolute path."""
+    if Path.cwd().resolve() == WORKFLOW_ROOT:
+        return relative
+    return str(WORKFLOW_ROOT / relative)
+
+
 try:
-    # The configuration as this package reads it (rotorvib.pipeline.strict_yaml: YAML 1.2, strict),
-    # replacing Snakemake's reading (YAML 1.1, a duplicate key's last value kept), from the
-    # same files in the same order: the Snakefile's `configfile:`, each --configfile, --config.
-    _settings = workflow.config_settings
-    _given = [Path(f).resolve() for f in _settings.configfiles]
-    _read = workflow_config(
-        [f for f in workflow.configfiles if Path(f).resolve() not in _given],
-        _settings.configfiles,
-        dict(_settings.config),
-        replace_base=_settings.replace_workflow_config,
-    )
+    if module_config_given(workflow):
+        # A module of another workflow given its own `config:`: that configuration over the
+        # shipped defaults (config/config.yaml), its shape checked before it is used.
+        check_value(config, "the module's config")
+        _read = merge(load_yaml(WORKFLOW_ROOT / "config/config.yaml"), config)
+    else:
+        # The configuration as this package reads it (rotorvib.pipeline.strict_yaml: YAML 1.2,
+        # strict), replacing Snakemake's reading (YAML 1.1, a duplicate key's last value kept),
+        # from the same files in the same order: the Snakefile's `configfile:`, each
+        # --configfile, --config.
+        _settings = workflow.config_settings
+        _given = [Path(f).resolve() for f in _settings.configfiles]
+        _read = workflow_config(
+            [f for f in workflow.configfiles if Path(f).resolve() not in _given],
+            _settings.configfiles,
+            dict(_settings.config),
+            replace_base=_settings.replace_workflow_config,
+        )
     config.clear()
-    config.update(check_config(_read, load_yaml("config/schema.yaml")))
+    config.update(check_config(_read, load_yaml(WORKFLOW_ROOT / "config/schema.yaml")))
 except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
@@ -70,7 +94,7 @@ BESIDE_THE_COMPILE, LONGEST_CHAIN, COMPUTES = 3, 2, 1
 # (python -m benchmarks.cluster), more than most jobs take at the paper's sizes (python -m
 # benchmarks.pipeline): splitting a study over jobs (paper_b.shards > 1) is what makes it worth
 # a cluster, and the shards are what is sent.
-PAPER_VALUES = "data/paper_values.csv"
+PAPER_VALUES = source("data/paper_values.csv")
 REPORT_DIR = f"{RESULTS_DIR}/report"
 REPORT_LANDING = f"{REPORT_DIR}/landing.rst"
 

@@ -9,7 +9,7 @@ rule report_text:
         comparison=f"{RESULTS_DIR}/comparison.csv",
         discrepancies=f"{RESULTS_DIR}/discrepancies.csv",
         paper_values=PAPER_VALUES,
-        papers="data/papers.yaml",
+        papers=source("data/papers.yaml"),
         tables=[d["csv"] for paper in TABLES for d in TABLES[paper].values()],
         drawn=[
             figure_file(paper, name, "json")

@@ -1,13 +1,16 @@
-"""The one place the workflow uses Snakemake's rule objects beyond its documented API.
+"""The one place the workflow uses Snakemake's objects beyond its documented API.
 
 Snakemake documents rules as they are written in a Snakefile, not the ``Rule`` objects the
 Snakefile can reach through ``workflow.rules``.  The workflow needs four things from them that no
 public API gives: a rule's script path, to give the rule its code fingerprint as a parameter
 (``Rule.set_params``), and, for an input dataset, the rule that makes it and its wildcards
 (``Rule.is_producer``, ``Rule.get_wildcards``), to check on read that the dataset was made by
-that rule under this run's configuration.  Every such use is here; ``tests/test_snakemake_rules.py``
-fails on a Snakemake whose ``Rule`` no longer has them, so an upgrade breaks loudly, not
-silently.  This module does not import Snakemake: the Snakefile hands it the rule objects.
+that rule under this run's configuration.  And one thing of the workflow: whether it is read as
+a module given its own ``config:`` (:func:`module_config_given`), whose configuration is then
+that ``config:`` rather than the command's files.  Every such use is here;
+``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so an upgrade
+breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
+objects.
 """
 
 from __future__ import annotations
@@ -33,6 +36,13 @@ def add_params(rule, **params) -> None:
 def producer(rules, path: str):
     """The rule of ``rules`` that makes ``path``."""
     return next(rule for rule in rules if rule.is_producer(path))
+
+
+def module_config_given(workflow) -> bool:
+    """Whether the Snakefile being read is a module of another workflow given a ``config:`` of
+    its own (Snakemake then skips the module's ``configfile:``, ``WorkflowModifier``)."""
+    modifier = workflow.modifier
+    return bool(modifier.is_module and modifier.skip_configfile)
 
 
 def wildcards(rule, path: str) -> dict:
