@@ -1,8 +1,9 @@
+import numpy as np
 import pytest
 
 from rotorvib.comparison import (Margin, Reproduced, build_table, claim_verdict,
-                                 margin_text, merge_variants, read_reproduced, totals, verdict,
-                                 with_findings, write_reproduced)
+                                 margin_text, merge_variants, totals, verdict, with_findings)
+from rotorvib.reproduced_csv import read_reproduced, write_reproduced
 
 HOLDS, FAILS = Margin(0.2, 0.01, "s", "test"), Margin(-0.2, 0.01, "s", "test")
 
@@ -162,3 +163,68 @@ def test_an_uncertainty_claim_no_case_could_test_is_undetermined_saying_why():
     assert [r.quantity for r in rows] == ["table1_mean_time_220_within_uncertainty"]
     assert claim_verdict(rows[0].holds) == "UNDETERMINED"
     assert "not tested under this configuration" in rows[0].explanation
+
+
+def test_a_self_contradicting_paper_is_judged_against_its_own_implied_value():
+    """Table 2's forces imply a 33 % decay-time reduction where the text prints 55 % (the text
+    swaps its two percentages): the reproduction is judged against 33 %, not 55 %."""
+    from rotorvib.comparison import verdict
+
+    assert verdict(55.0, 33.5, implied=32.94) == (pytest.approx(abs(33.5 - 32.94) / 32.94),
+                                                  "PAPER-INCONSISTENT")
+    rel, found = verdict(55.0, 43.0, implied=32.94)
+    assert found == "MAJOR" and rel == pytest.approx((43.0 - 32.94) / 32.94)
+    assert verdict(55.0, 43.0, implied=54.0)[1] == "MAJOR"       # consistent: judged as printed
+
+
+def test_an_optimum_the_grid_cannot_resolve_is_undetermined():
+    """eq. (41)'s 6 g against a grid optimum of 6.5 g whose neighbours lie within the curve's
+    bumps: UNDETERMINED while the interval holds the paper's value, UNEXPECTED once it does
+    not (a smoother curve, one choice moved)."""
+    from rotorvib.comparison import verdict
+    from rotorvib.papers.b.curves import argmin_interval, roughness
+
+    masses = 0.0055 + 0.00025 * np.arange(9)                 # 5.5-7.5 g in quarter grams
+    smooth = 4.0 + 1e5 * (masses - 0.0065) ** 2
+    near = argmin_interval(smooth, masses)                    # a step either side
+    assert near == pytest.approx((0.00625, 0.00675))
+    assert verdict(0.006, 0.0065, source="theory", interval=near)[1] == "UNEXPECTED"
+    bumpy = smooth.copy()
+    bumpy[1] += 0.1                                           # 5.75 g: a bump of 0.1 s
+    assert roughness(bumpy) > 0.09
+    near = argmin_interval(bumpy, masses)
+    assert near[0] == pytest.approx(0.006) and near[1] > 0.0065
+    assert verdict(0.006, 0.0065, source="theory", interval=near)[1] == "UNDETERMINED"
+
+
+def test_a_calibrated_row_is_counted_apart_never_as_evidence(tmp_path):
+    from rotorvib.comparison import CALIBRATED, Margin, Reproduced, build_table, totals
+
+    values = [{"paper": "B", "item": "Table 2", "quantity": "q", "unit": "", "value": None,
+               "source": "theory", "read_off_figure": "no", "claim": "c", "quote_where": "",
+               "quote_fa": "", "quote_en": ""}]
+    row = Reproduced.claim("B", "q", Margin(1.0, 0.1, "N", "band"), "within the band",
+                           calibrated="R was fitted to it")
+    (built,) = build_table(values, [row])
+    assert built["verdict"] == CALIBRATED and built["explanation"].startswith("not evidence")
+    assert totals([built])[-1] == ("calibrated, not evidence (1 row, 1 finding): "
+                                   "CALIBRATED 1 (1 finding)")
+    assert all(" 0" in line or "(0 rows" in line for line in totals([built])[:-1])
+
+
+def test_moving_one_choice_flips_a_constructed_verdict():
+    """A claim evaluated under each declared alternative of a choice (here a tolerance): both
+    agree, it is decided; move one alternative across the margin and it DEPENDS on the choice,
+    naming it."""
+    from rotorvib.comparison import Margin, Reproduced, claim_verdict, describe_holds
+
+    off = 0.01005                             # the antiresonance's distance from resonance
+
+    def row(tolerances):
+        return Reproduced.claim("C", "q", {f"within {t:.0%}": Margin(t - off, 1e-9, "w", "s")
+                                           for t in tolerances}, "")
+
+    assert claim_verdict(row([0.05, 0.10]).holds) == "SUPPORTED"
+    flipped = row([0.01, 0.10])
+    assert claim_verdict(flipped.holds) == "DEPENDS"
+    assert describe_holds(flipped.holds) == "holds under within 10%; not under within 1%"

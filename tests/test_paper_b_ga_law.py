@@ -1,6 +1,8 @@
 """What the GA's optimum is (beyond paper B): the whirl's envelope after the run-up, its line on
 a log scale, the exact split of a change of balance time, and the comparison row."""
 
+import math
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -103,3 +105,28 @@ def test_the_row_says_which_term_makes_the_optimum(around):
         by_amplitude.explanation
     (real,) = ga_law_rows(around)
     assert "heavier" not in real.explanation and "Heavier balls (+10%)" in real.explanation
+
+
+def test_a_band_edge_the_study_shares_is_not_a_failure_edge():
+    """beta_opt_range and the GA rows: a best beta at the studied range's lower end, 0.1, is
+    measured only to the band's upper edge 0.2 (no value of the study can fall below 0.1);
+    moving the studied range's end below the band (one choice) makes the lower edge count and
+    flips the margin's sign for a value outside it."""
+    from rotorvib.papers.b.curves import within_studied
+
+    margin, text = within_studied([0.1, 0.15], (0.1, 0.2), (0.1, 1.0))
+    assert margin == pytest.approx(0.05) and "0.1 is the studied range's own" in text
+    assert within_studied([0.05, 0.15], (0.1, 0.2), (0.01, 1.0))[0] == pytest.approx(-0.05)
+    assert within_studied([0.1], (0.1, 0.2), (0.1, 0.2))[0] == math.inf
+
+
+def test_a_ga_claim_that_a_seed_decides_is_undetermined():
+    """Two of five seeds outside the band: the margin lies inside its uncertainty; every seed
+    inside: decided, however spread the seeds."""
+    from rotorvib.comparison import Margin
+    from rotorvib.papers.b.claims import _seed_spread
+
+    inside = 0.004                               # the optimum just inside [0.1, 0.2]
+    by_seed = [0.004, 0.03, -0.02, -0.01, 0.05]  # two seeds outside
+    assert Margin(inside, _seed_spread(inside, by_seed), "beta", "seeds").holds() is None
+    assert Margin(inside, _seed_spread(inside, [0.004, 0.09, 0.05]), "beta", "s").holds()

@@ -5,10 +5,14 @@ Every value a paper states lives in ``data/paper_values.csv`` with its ``source`
 or ``theory`` (a value theory predicts, e.g. an error order).  Each paper's pipeline writes the
 reproduced values; this module joins the two and assigns a verdict:
 
-* a printed number: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %), or
-  PAPER-INCONSISTENT when the paper's own other numbers imply a value (``implied``) that differs
-  from the printed one by more than 10 % and the reproduction agrees with the implied one within
-  10 % (the paper contradicts itself; both numbers are quoted);
+* a printed number: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %); where the
+  paper's own other numbers imply a value (``implied``) that differs from the printed one by
+  more than 10 % (the paper contradicts itself; both numbers are quoted), the reproduction is
+  judged against the implied value, and is PAPER-INCONSISTENT where it agrees with it within
+  10 %, MAJOR otherwise;
+* a number the reproduction locates only within an interval (``interval``: an optimum on a
+  grid whose neighbours lie within the curve's own roughness) that holds the paper's value is
+  UNDETERMINED unless it is a MATCH or EXPECTED already: the reproduction cannot tell them apart;
 * a chosen or theoretical value: EXPECTED (within 1 %) or UNEXPECTED, counted apart;
 * a claim without a number: SUPPORTED, NOT SUPPORTED or DEPENDS from whether it holds under each
   variant it was evaluated under (kinematics, constructions); DEPENDS names the variants under
@@ -16,7 +20,10 @@ reproduced values; this module joins the two and assigns a verdict:
   :class:`Margin`, how far it is from failing, and the margin's own uncertainty: a margin
   inside its uncertainty decides nothing (UNDETERMINED under that variant);
 * a number whose reproduction has no value (every run censored: NaN, never a penalty or a cap
-  passed off as a number) is UNDETERMINED too, with its relative error left empty.
+  passed off as a number) is UNDETERMINED too, with its relative error left empty;
+* a row whose paper value a calibration of the reproduction was fitted to (``calibrated``
+  says which) is CALIBRATED, whatever it would be otherwise: it agrees by construction, and is
+  counted apart, never as evidence.
 """
 
 from __future__ import annotations
@@ -39,11 +46,12 @@ UNDETERMINED = "UNDETERMINED"
 NUMERIC_VERDICTS = ("MATCH", "MINOR", "MAJOR", "PAPER-INCONSISTENT", UNDETERMINED)
 EXPECTATION_VERDICTS = ("EXPECTED", "UNEXPECTED", UNDETERMINED)
 CLAIM_VERDICTS = ("SUPPORTED", "NOT SUPPORTED", "DEPENDS", UNDETERMINED)
-#: The three kinds of row and their verdicts, as the totals count them.
+CALIBRATED = "CALIBRATED"
+#: The kinds of row and their verdicts, as the totals count them.
 VERDICT_GROUPS = (("printed numbers", NUMERIC_VERDICTS),
                   ("chosen or theoretical values", EXPECTATION_VERDICTS),
-                  ("claims", CLAIM_VERDICTS))
-_HOLDS_TEXT = {True: "yes", False: "no", None: "undetermined"}
+                  ("claims", CLAIM_VERDICTS),
+                  ("calibrated, not evidence", (CALIBRATED,)))
 
 
 @dataclass(frozen=True)
@@ -84,7 +92,9 @@ class Reproduced:
     ``holds`` (claims only) pairs each variant the claim was evaluated under with whether it
     holds there (None: undetermined); ``variants`` (numbers only) pairs each other variant with
     its value; ``implied`` is the value the paper's own other numbers imply, when the paper
-    states the quantity twice; ``margin`` (claims) is the reproduction's :class:`Margin`."""
+    states the quantity twice; ``interval`` (numbers) the values the reproduction cannot tell
+    from ``reproduced``; ``margin`` (claims) is the reproduction's :class:`Margin`;
+    ``calibrated`` names the calibration fitted to the paper's value, where one was."""
 
     paper: str
     quantity: str
@@ -94,19 +104,25 @@ class Reproduced:
     implied: float | None = None
     variants: tuple[tuple[str, float], ...] = ()
     margin: Margin | None = None
+    interval: tuple[float, float] | None = None
+    calibrated: str = ""
 
     @classmethod
     def of(cls, paper: str, quantity: str, value, explanation: str,
-           implied: float | None = None) -> "Reproduced":
+           implied: float | None = None,
+           interval: tuple[float, float] | None = None) -> "Reproduced":
         """A numeric row with ``value`` as float."""
         return cls(paper, quantity, float(value), explanation,
-                   implied=None if implied is None else float(implied))
+                   implied=None if implied is None else float(implied),
+                   interval=None if interval is None else (float(interval[0]),
+                                                            float(interval[1])))
 
     @classmethod
-    def claim(cls, paper: str, quantity: str, holds, explanation: str) -> "Reproduced":
+    def claim(cls, paper: str, quantity: str, holds, explanation: str,
+              calibrated: str = "") -> "Reproduced":
         """A claim row; ``holds`` is a :class:`Margin` (the claim holds as the margin decides),
         None (undecidable, e.g. for want of material the paper does not give) or a mapping
-        variant -> Margin/None."""
+        variant -> Margin/None; ``calibrated`` as the class says."""
         pairs = tuple(holds.items()) if isinstance(holds, dict) else (("", holds),)
         for k, v in pairs:
             if not (v is None or isinstance(v, Margin)):
@@ -114,7 +130,7 @@ class Reproduced:
                                 f"not {type(v).__name__}")
         return cls(paper, quantity, None, explanation,
                    holds=tuple((str(k), None if v is None else v.holds()) for k, v in pairs),
-                   margin=pairs[0][1])
+                   margin=pairs[0][1], calibrated=calibrated)
 
 
 def within_band(ds, quantity: str, margin: tuple[float, float]) -> Margin:
@@ -146,20 +162,32 @@ def claim_verdict(holds) -> str:
 
 
 def verdict(paper_value: float | None, reproduced: float | None, *, source: str = "printed",
-            holds=(), implied: float | None = None) -> tuple[float | None, str]:
+            holds=(), implied: float | None = None,
+            interval: tuple[float, float] | None = None,
+            calibrated: str = "") -> tuple[float | None, str]:
     """Return ``(relative error, verdict)`` (module docstring); ``paper_value=None`` marks a
-    claim, judged by ``holds``."""
+    claim, judged by ``holds``. The relative error is to the value the row is judged against:
+    the implied one where the paper contradicts itself."""
+    if calibrated:
+        rel = (None if paper_value is None or reproduced is None
+               else relative_error(paper_value, reproduced))
+        return rel, CALIBRATED
     if paper_value is None:
         return None, claim_verdict(holds)
     if reproduced is None or not math.isfinite(reproduced):
         return None, UNDETERMINED       # no number to compare (e.g. every run censored)
+    if implied is not None and relative_error(implied, paper_value) > MINOR_TOL:
+        rel = relative_error(implied, reproduced)
+        return rel, "PAPER-INCONSISTENT" if rel <= MINOR_TOL else "MAJOR"
     rel = relative_error(paper_value, reproduced)
     if source != "printed":
-        return rel, "EXPECTED" if rel <= MATCH_TOL else "UNEXPECTED"
-    if (implied is not None and relative_error(implied, paper_value) > MINOR_TOL
-            and relative_error(implied, reproduced) <= MINOR_TOL):
-        return rel, "PAPER-INCONSISTENT"
-    return rel, "MATCH" if rel <= MATCH_TOL else "MINOR" if rel <= MINOR_TOL else "MAJOR"
+        found = "EXPECTED" if rel <= MATCH_TOL else "UNEXPECTED"
+    else:
+        found = "MATCH" if rel <= MATCH_TOL else "MINOR" if rel <= MINOR_TOL else "MAJOR"
+    if found not in ("MATCH", "EXPECTED") and interval is not None and \
+            interval[0] <= paper_value <= interval[1]:
+        return rel, UNDETERMINED
+    return rel, found
 
 
 def describe_holds(holds) -> str:
@@ -189,7 +217,8 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reprodu
             quoted = "".join(f"; {name}: {r.reproduced:.4g}" for name, r in alt.items())
             merged.append(Reproduced(row.paper, row.quantity, row.reproduced,
                                      row.explanation + quoted, implied=row.implied,
-                                     variants=tuple((n, r.reproduced) for n, r in alt.items())))
+                                     variants=tuple((n, r.reproduced) for n, r in alt.items()),
+                                     interval=row.interval))
             continue
         holds = ((first, row.holds[0][1]),) + tuple((n, r.holds[0][1]) for n, r in alt.items())
         text = f"{first}: {row.explanation}" + "".join(
@@ -200,7 +229,8 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reprodu
     return merged
 
 
-def _float_or_none(text: str) -> float | None:
+def float_or_none(text: str) -> float | None:
+    """A CSV cell as a number, or None where it is empty."""
     return float(text) if text.strip() else None
 
 
@@ -214,67 +244,14 @@ def read_paper_values(path: str | Path) -> list[dict]:
             raise ValueError(f"{path}: {row['quantity']}: more fields than the header "
                              f"({row[None]!r}): quote a text that holds a comma")
         row["value_text"] = row["value"]
-        row["value"] = _float_or_none(row["value"])
+        row["value"] = float_or_none(row["value"])
         if row["source"] not in SOURCES:
             raise ValueError(f"{path}: {row['quantity']}: source {row['source']!r} is not one of "
                              f"{SOURCES}")
     return rows
 
 
-def _holds_from_text(text: str):
-    inverse = {v: k for k, v in _HOLDS_TEXT.items()}
-    pairs = [item.rsplit("=", 1) if "=" in item else ("", item)
-             for item in text.split(";") if item]
-    return tuple((k, inverse[v]) for k, v in pairs)
-
-
-def _holds_to_text(holds) -> str:
-    return ";".join(f"{k}={_HOLDS_TEXT[h]}" if k else _HOLDS_TEXT[h] for k, h in holds)
-
-
-def _variants_from_text(text: str):
-    return tuple((k, float(v)) for k, v in (item.rsplit("=", 1) for item in text.split(";")
-                                            if item))
-
-
 MARGIN_COLUMNS = ("margin", "uncertainty", "margin_unit", "margin_basis")
-REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "variants",
-                      *MARGIN_COLUMNS, "explanation")
-
-
-def _margin_from_text(r: dict) -> Margin | None:
-    if not r["margin_basis"]:
-        return None
-    return Margin(float(r["margin"]), float(r["uncertainty"]), r["margin_unit"], r["margin_basis"])
-
-
-def _margin_cells(margin: Margin | None) -> list:
-    if margin is None:
-        return ["", "", "", ""]
-    return [repr(float(margin.value)), repr(float(margin.uncertainty)), margin.unit, margin.basis]
-
-
-def read_reproduced(path: str | Path) -> list[Reproduced]:
-    """The rows a paper's comparison-values script wrote (:func:`write_reproduced`)."""
-    with open(path, newline="", encoding="utf-8") as fh:
-        return [Reproduced(r["paper"], r["quantity"], _float_or_none(r["reproduced"]),
-                           r["explanation"], _holds_from_text(r["holds"]),
-                           _float_or_none(r["implied"]), _variants_from_text(r["variants"]),
-                           _margin_from_text(r))
-                for r in csv.DictReader(fh)]
-
-
-def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
-    """Write reproduced rows as CSV (:data:`REPRODUCED_COLUMNS`); :func:`read_reproduced` reads
-    them back unchanged."""
-    with open(path, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(REPRODUCED_COLUMNS)
-        for r in rows:
-            writer.writerow([r.paper, r.quantity, "" if r.reproduced is None else repr(r.reproduced),
-                             _holds_to_text(r.holds), "" if r.implied is None else repr(r.implied),
-                             ";".join(f"{k}={v!r}" for k, v in r.variants),
-                             *_margin_cells(r.margin), r.explanation])
 
 
 def paper_says(value_row: dict) -> str:
@@ -310,15 +287,25 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
             raise ValueError(f"paper value {key} has no reproduced value")
         r = by_key[key]
         rel, verdict_ = verdict(p["value"], r.reproduced, source=p["source"], holds=r.holds,
-                                implied=r.implied)
+                                implied=r.implied, interval=r.interval,
+                                calibrated=r.calibrated)
         if verdict_ not in ("MATCH", "EXPECTED") and not r.explanation.strip():
             raise ValueError(f"{key} is {verdict_} but has no explanation")
-        if p["value"] is None and r.margin is None and verdict_ != UNDETERMINED:
+        if p["value"] is None and r.margin is None and verdict_ not in (UNDETERMINED,
+                                                                          CALIBRATED):
             raise ValueError(f"claim {key} is {verdict_} but has no margin")
         explanation = r.explanation
-        if verdict_ == "PAPER-INCONSISTENT":
+        if r.calibrated:
+            holds = describe_holds(r.holds)
+            explanation = (f"not evidence: {r.calibrated}, so it agrees by construction; "
+                           + (f"{holds}: " if holds else "") + explanation)
+        elif r.implied is not None and relative_error(r.implied, p["value"]) > MINOR_TOL:
             explanation = (f"the paper prints {p['value']:g} but its own other numbers imply "
-                           f"{r.implied:.4g}; {explanation}")
+                           f"{r.implied:.4g}, against which the row is judged; {explanation}")
+        elif verdict_ == UNDETERMINED and r.interval is not None:
+            explanation = (f"the reproduction cannot tell {r.reproduced:.4g} from "
+                           f"{r.interval[0]:.4g}-{r.interval[1]:.4g}, which holds the paper's "
+                           f"{p['value']:g}; {explanation}")
         elif describe_holds(r.holds):
             explanation = f"{describe_holds(r.holds)}: {explanation}"
         table.append({"paper": p["paper"], "item": p["item"], "quantity": p["quantity"],
@@ -371,8 +358,10 @@ def paper_values_of(path: str | Path, paper: str) -> dict[str, float | None]:
 
 
 def group_of(row: dict) -> str:
-    """The verdict group (:data:`VERDICT_GROUPS`) of a comparison row: a claim has no paper
-    value; a number is printed, or chosen or theoretical."""
+    """The verdict group (:data:`VERDICT_GROUPS`) of a comparison row: a calibrated row apart;
+    a claim has no paper value; a number is printed, or chosen or theoretical."""
+    if row.get("verdict") == CALIBRATED:
+        return VERDICT_GROUPS[-1][0]
     if row["paper_value"] in (None, ""):
         return "claims"
     return "printed numbers" if row["source"] == "printed" else "chosen or theoretical values"
@@ -388,7 +377,8 @@ def totals(table: list[dict]) -> list[str]:
         found = {v: {r["finding"] for r in group if r["verdict"] == v} for v in verdicts}
         counts = {v: sum(r["verdict"] == v for r in group) for v in verdicts}
         shown = [v for v in verdicts if v != UNDETERMINED or name == "claims" or counts[v]]
-        lines.append(f"{name} ({len(group)} rows, {_findings(set().union(*found.values()))}): "
+        rows = f"{len(group)} row{'' if len(group) == 1 else 's'}"
+        lines.append(f"{name} ({rows}, {_findings(set().union(*found.values()))}): "
                      + ", ".join(f"{v} {counts[v]}" + (f" ({_findings(found[v])})"
                                                       if counts[v] else "") for v in shown))
     return lines
@@ -408,7 +398,9 @@ def verdict_definitions() -> str:
             "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED. "
             "Each claim carries its margin (positive where it holds) and the margin's "
             "uncertainty; a margin inside its uncertainty decides nothing: UNDETERMINED. "
-            "A number with nothing to compare (every run censored) is UNDETERMINED.")
+            "A number with nothing to compare (every run censored) is UNDETERMINED. "
+            "A row whose paper value a calibration of the reproduction was fitted to is "
+            "CALIBRATED, counted apart and never as evidence.")
 
 
 def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path,

@@ -100,7 +100,8 @@ def misses(paper_values: list[dict], reproduced) -> dict[str, tuple[float, str]]
     out = {}
     for r in reproduced:
         if r.quantity in printed and r.reproduced is not None:
-            _, v = verdict(printed[r.quantity], r.reproduced, implied=r.implied)
+            _, v = verdict(printed[r.quantity], r.reproduced, implied=r.implied,
+                           interval=r.interval)
             if v in MISSES:
                 out[r.quantity] = (printed[r.quantity], v)
     return out

@@ -2,7 +2,8 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.comparison import merge_variants, paper_values_of, write_reproduced
+from rotorvib.comparison import merge_variants, paper_values_of
+from rotorvib.reproduced_csv import write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.boundaries import boundary_rows
 from rotorvib.papers.b.claims import reproduce

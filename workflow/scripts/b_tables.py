@@ -6,7 +6,8 @@ from pathlib import Path
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
-from rotorvib.papers.b.claims import kinematics_note, table1_rows, table2_rows
+from rotorvib.papers.b.claims import table1_rows, table2_rows
+from rotorvib.papers.b.kinematics_note import kinematics_note
 
 job.start(snakemake.log[0])
 producers = snakemake.params.input_producers  # each input dataset's rule and configuration

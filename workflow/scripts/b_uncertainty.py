@@ -8,7 +8,7 @@ from rotorvib.io.datasets import read_dataset
 from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
-from rotorvib.papers.b.uncertainty import calibrated_band, uncertainty_dataset
+from rotorvib.papers.b.uncertainty import CALIBRATION_KEY, calibrated_band, uncertainty_dataset
 from rotorvib.pipeline.shards import run_study
 
 job.start(snakemake.log[0])
@@ -17,7 +17,8 @@ p = snakemake.params
 u = p.uncertainty
 paper = paper_values_of(snakemake.input.paper_values, "B")
 forces = read_dataset(snakemake.input.forces, p.input_producers)
-R_band = calibrated_band(forces, [paper[f"table2_fmax_{row}"] for row in forces.case.values],
+R_band = calibrated_band(forces, [paper[CALIBRATION_KEY.format(row=row)]
+                                  for row in forces.case.values],
                          kinematics=p.kinematics)
 setup = Setup.from_config(**p.setup)
 run_study(snakemake, lambda inputs: setup.runs(inputs, progress=False),

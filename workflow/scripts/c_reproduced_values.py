@@ -2,7 +2,8 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.comparison import paper_values_of, write_reproduced
+from rotorvib.comparison import paper_values_of
+from rotorvib.reproduced_csv import write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.models.absorber.parameters import Rotor
 from rotorvib.papers.c.broadband import broadband_rows

@@ -7,6 +7,8 @@ than any balanced run (:func:`as_longest`), never as a number.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 
@@ -62,6 +64,53 @@ def within(values, band) -> float:
     lo, hi = band
     values = np.asarray(values, float)
     return float(np.min(np.minimum(values - lo, hi - values)))
+
+
+def within_studied(values, band, studied) -> tuple[float, str]:
+    """How far every value lies inside ``band`` (negative: outside by that much), measured only
+    to the band's edges that lie inside the ``studied`` range (a grid's ends, a search's
+    bounds): an edge the study shares can be failed by no value it can give, so a margin to it
+    says nothing. Returns the margin (infinite when no edge of the band can be failed) and a
+    sentence naming the edges it is measured to."""
+    lo, hi = band
+    values = np.asarray(values, float)
+    edges = [(values - lo, f"{lo:g}")] if lo > studied[0] else []
+    edges += [(hi - values, f"{hi:g}")] if hi < studied[1] else []
+    if not edges:
+        return math.inf, (f"the band [{lo:g}, {hi:g}] holds the whole studied range "
+                          f"[{studied[0]:g}, {studied[1]:g}]: true by construction")
+    shared = [f"{e:g}" for e, inside in ((lo, lo > studied[0]), (hi, hi < studied[1]))
+              if not inside]
+    text = f"margin to the band's edge {' and '.join(name for _, name in edges)}"
+    if shared:
+        text += (f"; its edge {' and '.join(shared)} is the studied range's own "
+                 f"[{studied[0]:g}, {studied[1]:g}], which no value can cross")
+    return float(np.min([np.min(m) for m, _ in edges])), text
+
+
+def argmin(curve, axis_values) -> float:
+    """The grid value of a curve's least point (NaN where the curve has no value)."""
+    return float(axis_values[int(np.nanargmin(curve))]) if np.isfinite(curve).any() else math.nan
+
+
+def roughness(curve) -> float:
+    """The size of a sampled curve's own bumps: the largest departure of a point from the mean
+    of its two neighbours (a curve smooth on the grid's scale departs by its curvature times
+    the step squared; a bump, by its height). NaN points are skipped with their neighbours."""
+    y = np.asarray(curve, float)
+    bumps = np.abs(y[1:-1] - (y[:-2] + y[2:]) / 2)
+    return float(np.nanmax(bumps)) if np.isfinite(bumps).any() else 0.0
+
+
+def argmin_interval(curve, axis_values) -> tuple[float, float]:
+    """The grid values whose point lies within the curve's :func:`roughness` of its least: the
+    optimum the grid cannot tell apart, as ``(lowest, highest)`` (NaN where the curve has no
+    value)."""
+    y = np.asarray(curve, float)
+    if not np.isfinite(y).any():
+        return math.nan, math.nan
+    near = np.asarray(axis_values, float)[y <= np.nanmin(y) + roughness(y)]
+    return float(near.min()), float(near.max())
 
 
 def mean_over_ics(ds: xr.DataArray) -> xr.DataArray:

@@ -24,6 +24,7 @@ time: the bands of times are over the runs that balance, and ``balanced`` gives 
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import replace
 from functools import partial
 
@@ -46,6 +47,8 @@ _claim = partial(Reproduced.claim, "B")
 
 #: How the range of R was found (:func:`calibrated_band`): the band Table 2's forces allow.
 CALIBRATED = "the band Table 2's forces allow"
+#: The paper values the calibration of R is fitted to: Table 2's printed peak force of each row.
+CALIBRATION_KEY = "table2_fmax_{row}"
 
 
 def calibrated_band(forces: xr.Dataset, printed, *, kinematics: str,
@@ -193,13 +196,20 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinem
 
 def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reproduced]:
     """One row per ``quantity -> paper key`` of ``printed``: is the paper's value within the
-    band of its reproduction?  Where R's range is not the calibrated band, the row says so."""
-    caveat = "" if ds.attrs["R_range"] == CALIBRATED else f" ({ds.attrs['R_range']})"
+    band of its reproduction?  Where R's range is not the calibrated band, the row says so;
+    where it is, a value the calibration was fitted to (:data:`CALIBRATION_KEY`) is labelled
+    so: its band holds it by construction."""
+    calibrated = ds.attrs["R_range"] == CALIBRATED
+    caveat = "" if calibrated else f" ({ds.attrs['R_range']})"
+    fitted = re.compile(CALIBRATION_KEY.format(row=r"\d+"))
     rows = []
     for quantity, key in printed.items():
         margin, text = band_statement(ds, quantity, paper[key])
+        used = calibrated and fitted.fullmatch(key)
         rows.append(_claim(f"{key}_within_uncertainty", within_band(ds, quantity, margin),
-                           f"printed {text}{caveat}"))
+                           f"printed {text}{caveat}",
+                           calibrated=(f"R's range is {CALIBRATED}, {key} among them"
+                                       if used else "")))
     return rows
 
 

@@ -1,0 +1,184 @@
+"""The makespan of a finished run on any number of cores, from Snakemake's own job records.
+
+Snakemake keeps, for every output file, a record of the job that made it (``.snakemake/
+metadata``: its rule, inputs, start and end). This reads the records of one results folder,
+joins each job's outputs, links a job to the jobs that made its inputs, and prints:
+
+- the total job time (the sum of every job's wall time, as measured in that run);
+- the critical chain: the longest path of jobs through their dependencies, which no number of
+  cores can shorten, and its share of the total;
+- the simulated makespan on 2, 4, 8, 16 and 64 cores (or ``--cores``): jobs started as their
+  inputs are made, longest remaining chain first, one core each, with the durations measured.
+
+Run from the repository root after a run of the paper configuration::
+
+    python -m benchmarks.makespan [--results results] [--cores 2 4 8 16 64]
+
+The durations are the run's own (on the machine and with the ``-j`` it had): a job that shared
+its core ran longer than it would alone, so the simulation is an upper bound where the run was
+crowded. The README quotes no timing: this script measures it on the machine at hand.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import base64
+import heapq
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+METADATA = Path(".snakemake/metadata")
+
+
+@dataclass
+class Job:
+    """One job of a run: its rule, the files it made and read, when it started and ended."""
+
+    rule: str
+    start: float
+    end: float
+    outputs: set[str] = field(default_factory=set)
+    inputs: set[str] = field(default_factory=set)
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.start
+
+
+def _files(value) -> set[str]:
+    """A record's file list (Snakemake keeps it as a list, or as the list's text)."""
+    if isinstance(value, str):
+        value = ast.literal_eval(value) if value.startswith("[") else [value]
+    return {str(v) for v in value or ()}
+
+
+def read_jobs(results: str, metadata: Path = METADATA) -> list[Job]:
+    """The jobs whose outputs lie under ``results`` but not in the results folder of another
+    configuration inside it (a folder holding a ``paper_b/datasets/`` of its own): the records of one job
+    (same rule and end) joined into one, each job's start no earlier than the end of
+    the jobs that made its inputs (Snakemake may keep an earlier start for a job rerun)."""
+    jobs: dict[tuple, Job] = {}
+    prefix = results.rstrip("/") + "/"
+    records = {base64.urlsafe_b64decode(path.name.encode()).decode(): path
+               for path in sorted(metadata.iterdir())}
+    nested = {out[len(prefix):].split("/")[0] for out in records if out.startswith(prefix)
+              and "/paper_b/datasets/" in out[len(prefix):]}
+    for output, path in records.items():
+        if not output.startswith(prefix) or output[len(prefix):].split("/")[0] in nested:
+            continue
+        record = json.loads(path.read_text())
+        try:
+            start, end = float(record["starttime"]), float(record["endtime"])
+        except (KeyError, TypeError, ValueError):
+            continue                               # a record without times (never ran here)
+        key = (record["rule"], end)            # a job's records share its end, not its start
+        job = jobs.setdefault(key, Job(record["rule"], start, end))
+        job.start = min(job.start, start)
+        job.outputs.add(output)
+        job.inputs |= _files(record.get("input"))
+    found = list(jobs.values())
+    for i, before in dependencies(found).items():
+        found[i].start = max([found[i].start] + [found[j].end for j in before])
+    return found
+
+
+def dependencies(jobs: list[Job]) -> dict[int, set[int]]:
+    """For each job (by index), the jobs that made its inputs."""
+    maker = {f: i for i, job in enumerate(jobs) for f in job.outputs}
+    return {i: {maker[f] for f in job.inputs if f in maker and maker[f] != i}
+            for i, job in enumerate(jobs)}
+
+
+def tails(jobs: list[Job], needs: dict[int, set[int]]) -> list[float]:
+    """For each job, the longest chain from its start to the end of the run (itself included)."""
+    users: dict[int, set[int]] = {i: set() for i in range(len(jobs))}
+    for i, before in needs.items():
+        for j in before:
+            users[j].add(i)
+    order = _topological(needs)
+    tail = [0.0] * len(jobs)
+    for i in reversed(order):
+        tail[i] = jobs[i].duration + max((tail[u] for u in users[i]), default=0.0)
+    return tail
+
+
+def _topological(needs: dict[int, set[int]]) -> list[int]:
+    left = {i: set(before) for i, before in needs.items()}
+    order = []
+    ready = sorted(i for i, before in left.items() if not before)
+    while ready:
+        i = ready.pop()
+        order.append(i)
+        for j, before in left.items():
+            if i in before:
+                before.discard(i)
+                if not before:
+                    ready.append(j)
+    if len(order) != len(needs):
+        raise ValueError("the job records form a cycle")
+    return order
+
+
+def critical_chain(jobs: list[Job]) -> tuple[float, list[Job]]:
+    """The longest chain of jobs through their dependencies, and its length (s)."""
+    needs = dependencies(jobs)
+    tail = tails(jobs, needs)
+    users = {i: [u for u, before in needs.items() if i in before] for i in range(len(jobs))}
+    i = max(range(len(jobs)), key=tail.__getitem__)
+    chain = [jobs[i]]
+    while users[i]:
+        i = max(users[i], key=tail.__getitem__)
+        chain.append(jobs[i])
+    return max(tail, default=0.0), chain
+
+
+def simulated_makespan(jobs: list[Job], cores: int) -> float:
+    """List scheduling on ``cores`` cores: a job starts when its inputs are made and a core is
+    free, the ready job with the longest remaining chain first; each takes one core for its
+    measured duration."""
+    needs = dependencies(jobs)
+    tail = tails(jobs, needs)
+    left = {i: set(before) for i, before in needs.items()}
+    ready = [(-tail[i], i) for i, before in left.items() if not before]
+    heapq.heapify(ready)
+    running: list[tuple[float, int]] = []
+    now, done = 0.0, 0
+    while done < len(jobs):
+        while ready and len(running) < cores:
+            _, i = heapq.heappop(ready)
+            heapq.heappush(running, (now + jobs[i].duration, i))
+        now, i = heapq.heappop(running)
+        done += 1
+        for j, before in left.items():
+            if i in before:
+                before.discard(i)
+                if not before:
+                    heapq.heappush(ready, (-tail[j], j))
+    return now
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--results", default="results", help="the run's results folder")
+    parser.add_argument("--cores", type=int, nargs="+", default=[2, 4, 8, 16, 64])
+    args = parser.parse_args(argv)
+    jobs = read_jobs(args.results)
+    if not jobs:
+        raise SystemExit(f"no job records under {args.results}/: run the workflow first")
+    total = sum(job.duration for job in jobs)
+    length, chain = critical_chain(jobs)
+    print(f"{len(jobs)} jobs under {args.results}/, total job time {total:.1f} s")
+    print(f"critical chain {length:.1f} s = {length / total:.2f} of the total:")
+    for job in chain:
+        print(f"  {job.rule:<28} {job.duration:7.1f} s")
+    base = simulated_makespan(jobs, args.cores[0])
+    print("cores  simulated makespan  of the first")
+    for cores in args.cores:
+        span = simulated_makespan(jobs, cores)
+        print(f"{cores:5d}  {span:16.1f} s  {span / base:12.2f}")
+
+
+if __name__ == "__main__":
+    main()

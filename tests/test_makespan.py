@@ -1,0 +1,48 @@
+"""The makespan benchmark (benchmarks/makespan.py) on job records written as Snakemake writes
+them: jobs joined from their outputs' records, linked through their files, the critical chain
+and list scheduling checked against schedules worked out by hand."""
+
+import base64
+import json
+
+import pytest
+
+from benchmarks.makespan import critical_chain, read_jobs, simulated_makespan
+
+
+def _record(metadata, output, rule, start, end, inputs=()):
+    name = base64.urlsafe_b64encode(output.encode()).decode()
+    (metadata / name).write_text(json.dumps({"rule": rule, "input": list(inputs),
+                                             "starttime": start, "endtime": end}))
+
+
+@pytest.fixture
+def metadata(tmp_path):
+    """a (4 s) -> c (2 s) -> d (1 s); b (3 s) -> d; e (5 s) alone; a job with two outputs; a
+    rerun whose record kept an earlier start; another configuration's folder inside."""
+    m = tmp_path / "metadata"
+    m.mkdir()
+    _record(m, "results/a.nc", "a", 0.0, 4.0)
+    _record(m, "results/a.png", "a", 0.0001, 4.0)            # the same job, another output
+    _record(m, "results/b.nc", "b", 0.0, 3.0)
+    _record(m, "results/c.nc", "c", 4.0, 6.0, ["results/a.nc"])
+    _record(m, "results/d.nc", "d", 1.0, 7.0, ["results/c.nc", "results/b.nc"])  # kept start
+    _record(m, "results/e.nc", "e", 0.0, 5.0, ["data/x.csv"])
+    _record(m, "results/reduced/paper_b/datasets/f.nc", "f", 0.0, 99.0)
+    return m
+
+
+def test_jobs_are_joined_linked_and_started_after_their_inputs(metadata):
+    jobs = {job.rule: job for job in read_jobs("results", metadata)}
+    assert sorted(jobs) == ["a", "b", "c", "d", "e"]             # the nested run left out
+    assert jobs["a"].outputs == {"results/a.nc", "results/a.png"}
+    assert jobs["d"].duration == pytest.approx(1.0)               # 6 -> 7, not 1 -> 7
+    length, chain = critical_chain(list(jobs.values()))
+    assert length == pytest.approx(7.0) and [j.rule for j in chain] == ["a", "c", "d"]
+
+
+@pytest.mark.parametrize("cores, makespan", [(1, 15.0), (2, 8.0), (3, 7.0), (64, 7.0)])
+def test_list_scheduling_starts_the_longest_chain_first(metadata, cores, makespan):
+    """Two cores: a (chain 7) and e (chain 5) first, before b (4); at 4, b before c (its chain
+    4 against 3); c at 5 when e ends; d at 7, done at 8. One core: the sum, 15."""
+    assert simulated_makespan(read_jobs("results", metadata), cores) == pytest.approx(makespan)
