@@ -228,3 +228,17 @@ def test_moving_one_choice_flips_a_constructed_verdict():
     flipped = row([0.01, 0.10])
     assert claim_verdict(flipped.holds) == "DEPENDS"
     assert describe_holds(flipped.holds) == "holds under within 10%; not under within 1%"
+
+
+def test_rows_that_name_one_cause_are_one_finding():
+    """Paper C's GA optimum on its bounds shows in theta_ga, mu_opt and every Table 2 value
+    beside it: one cause, one finding, however their explanations differ; rows naming no cause
+    fall back to their explanations."""
+    values = [{"paper": "C", "item": "Table 2", "quantity": q, "unit": "", "value": 1.0,
+               "source": "printed", "read_off_figure": "no", "claim": "", "quote_where": "",
+               "quote_fa": "", "quote_en": ""} for q in ("a", "b", "c")]
+    rows = [Reproduced.of("C", "a", 5.0, "m1 at its upper bound", cause="the GA's optimum"),
+            Reproduced.of("C", "b", 5.0, "c1 at its lower bound", cause="the GA's optimum"),
+            Reproduced.of("C", "c", 5.0, "c1 at its lower bound")]
+    table = build_table(values, rows)
+    assert [r["finding"] for r in table] == ["C1", "C1", "C2"]

@@ -94,7 +94,9 @@ class Reproduced:
     its value; ``implied`` is the value the paper's own other numbers imply, when the paper
     states the quantity twice; ``interval`` (numbers) the values the reproduction cannot tell
     from ``reproduced``; ``margin`` (claims) is the reproduction's :class:`Margin`;
-    ``calibrated`` names the calibration fitted to the paper's value, where one was."""
+    ``calibrated`` names the calibration fitted to the paper's value, where one was; ``cause``
+    names the one cause several rows share, where their explanations differ in more than their
+    numbers (the finding they make, :func:`with_findings`)."""
 
     paper: str
     quantity: str
@@ -106,16 +108,18 @@ class Reproduced:
     margin: Margin | None = None
     interval: tuple[float, float] | None = None
     calibrated: str = ""
+    cause: str = ""
 
     @classmethod
     def of(cls, paper: str, quantity: str, value, explanation: str,
            implied: float | None = None,
-           interval: tuple[float, float] | None = None) -> "Reproduced":
+           interval: tuple[float, float] | None = None, cause: str = "") -> "Reproduced":
         """A numeric row with ``value`` as float."""
         return cls(paper, quantity, float(value), explanation,
                    implied=None if implied is None else float(implied),
                    interval=None if interval is None else (float(interval[0]),
-                                                            float(interval[1])))
+                                                            float(interval[1])),
+                   cause=cause)
 
     @classmethod
     def claim(cls, paper: str, quantity: str, holds, explanation: str,
@@ -218,7 +222,7 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reprodu
             merged.append(Reproduced(row.paper, row.quantity, row.reproduced,
                                      row.explanation + quoted, implied=row.implied,
                                      variants=tuple((n, r.reproduced) for n, r in alt.items()),
-                                     interval=row.interval))
+                                     interval=row.interval, cause=row.cause))
             continue
         holds = ((first, row.holds[0][1]),) + tuple((n, r.holds[0][1]) for n, r in alt.items())
         text = f"{first}: {row.explanation}" + "".join(
@@ -312,6 +316,7 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
                       "unit": p["unit"], "source": p["source"], "paper_value": p["value"],
                       "reproduced": r.reproduced, "rel_error": rel, "verdict": verdict_,
                       "explanation": explanation, "paper_says": paper_says(p),
+                      "cause": r.cause,
                       **dict(zip(MARGIN_COLUMNS, _margin_values(r.margin)))})
     return with_findings(table)
 
@@ -336,14 +341,14 @@ _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 def with_findings(table: list[dict]) -> list[dict]:
     """Each row with the finding it belongs to (``finding``: the paper's letter and a number
     in order of first appearance).  A finding is one cause: the rows of one paper with one
-    verdict whose explanations are the same but for their numbers (the GA's optimum mass on
-    its lower bound, for each of nine GAs, is one finding); a row without an explanation is a
-    finding of its own."""
+    verdict that name the same ``cause``, or, where a row names none, whose explanations are
+    the same but for their numbers (the GA's optimum mass on its lower bound, for each of nine
+    GAs, is one finding); a row without an explanation is a finding of its own."""
     ids: dict[tuple, str] = {}
     per_paper: dict[str, int] = {}
     rows = []
     for row in table:
-        cause = _NUMBER.sub("#", row["explanation"]) or row["quantity"]
+        cause = row.get("cause") or _NUMBER.sub("#", row["explanation"]) or row["quantity"]
         key = (row["paper"], row["verdict"], cause)
         if key not in ids:
             per_paper[row["paper"]] = per_paper.get(row["paper"], 0) + 1

@@ -29,7 +29,8 @@ def _variants_from_text(text: str):
 
 
 REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "variants",
-                      *MARGIN_COLUMNS, "interval", "calibrated", "explanation")
+                      *MARGIN_COLUMNS, "interval", "calibrated", "cause",
+                      "explanation")
 
 
 def _interval_from_text(text: str) -> tuple[float, float] | None:
@@ -59,7 +60,7 @@ def read_reproduced(path: str | Path) -> list[Reproduced]:
                            r["explanation"], _holds_from_text(r["holds"]),
                            float_or_none(r["implied"]), _variants_from_text(r["variants"]),
                            _margin_from_text(r), _interval_from_text(r["interval"]),
-                           r["calibrated"])
+                           r["calibrated"], r["cause"])
                 for r in csv.DictReader(fh)]
 
 
@@ -74,4 +75,4 @@ def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
                              _holds_to_text(r.holds), "" if r.implied is None else repr(r.implied),
                              ";".join(f"{k}={v!r}" for k, v in r.variants),
                              *_margin_cells(r.margin), _interval_text(r.interval),
-                             r.calibrated, r.explanation])
+                             r.calibrated, r.cause, r.explanation])
