@@ -4,10 +4,14 @@ and list scheduling checked against schedules worked out by hand."""
 
 import base64
 import json
+import sys
 
 import pytest
 
-from benchmarks.makespan import critical_chain, read_jobs, simulated_makespan
+from conftest import ROOT
+
+sys.path.insert(0, str(ROOT))                 # the benchmarks are modules of the repository
+from benchmarks.makespan import critical_chain, read_jobs, simulated_makespan  # noqa: E402
 
 
 def _record(metadata, output, rule, start, end, inputs=()):
