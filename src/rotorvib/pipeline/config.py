@@ -20,7 +20,6 @@ from __future__ import annotations
 import copy
 import math
 import re
-import sys
 import unicodedata
 from functools import cache
 from pathlib import Path
@@ -28,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import yaml
 
+from rotorvib.checks import SMALLEST_NORMAL
 from rotorvib.pipeline.config_checks import problems
 from rotorvib.pipeline.strict_yaml import (ConfigError, DuplicateKey, check_shape, check_value,
                                        load_value, load_yaml)
@@ -153,12 +153,6 @@ def _is_number(text: str) -> bool:
     except ValueError:
         return False
     return True
-
-
-#: The least magnitude of a normal double: a nonzero number below it (subnormal, e.g. 5e-324)
-#: has lost precision, and a product of it underflows to 0 (found by tests/schema_fuzz.py: a
-#: mass ratio of 5e-324 passed "> 0" and made an absorber of mass 0 inside a job).
-SMALLEST_NORMAL = sys.float_info.min
 
 
 def _non_finite(config, path=()) -> list[str]:
