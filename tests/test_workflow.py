@@ -302,3 +302,15 @@ def test_the_reduced_configuration_writes_to_its_own_folder():
     assert len(outputs) > 100
     assert all(path.startswith("results/reduced/") for path in outputs), [
         p for p in outputs if not p.startswith("results/reduced/")][:5]
+
+
+def test_the_gas_log_shows_its_generations_advancing(run_dir):
+    """Paper B's GA, the longest job, writes its progress to its log while it runs: each line
+    timed, with the generation of the total, the time elapsed and an estimate of what is left."""
+    log = (run_dir / "results/logs/b_ga.log").read_text()
+    generations = [int(g) for g in re.findall(r"^\d\d:\d\d:\d\d GA generations \(\d+ searches "
+                                              r"in lockstep\): (\d+) of (?:\d+), ", log, re.M)]
+    total = int(re.search(r"GA generations \(\d+ searches in lockstep\): \d+ of (\d+)",
+                          log).group(1))
+    assert generations[0] == 1 and generations[-1] == total
+    assert generations == sorted(generations) and "about" in log

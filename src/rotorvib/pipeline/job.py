@@ -17,6 +17,7 @@ start-up, so that an edit of the machinery reruns no job.
 """
 
 import gc
+import logging
 import sys
 
 gc.disable()
@@ -35,7 +36,13 @@ def job_config(params) -> dict:
 
 def start(log: str) -> None:
     """End the job's start-up: the objects made so far frozen, the collector on again, and
-    standard error (warnings, a traceback) written to the job's ``log`` file, line by line."""
+    standard error (warnings, a traceback, the library's progress messages with their time:
+    rotorvib.io.progress) written to the job's ``log`` file, line by line."""
     gc.freeze()
     gc.enable()
     sys.stderr = open(log, "w", buffering=1)
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(asctime)s %(message)s", datefmt="%H:%M:%S"))
+    library = logging.getLogger("rotorvib")       # the package's messages only, not others'
+    library.addHandler(handler)
+    library.setLevel(logging.INFO)

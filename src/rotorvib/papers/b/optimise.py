@@ -8,6 +8,7 @@ import xarray as xr
 
 from rotorvib.checks import number
 from rotorvib.io.coords import label_coord
+from rotorvib.io.progress import Progress
 from rotorvib.methods.ga import GAResult, minimise, minimise_many
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, dataset_attrs,
@@ -68,11 +69,15 @@ def ga_searches(kinematics, eps_bars, ics: dict, seeds) -> list[tuple[dict, int]
 def solve(setup: Setup, searches: list[tuple[dict, int]], *, beta_bounds, mass_bounds,
           pop_size, n_gen, censored_penalty, runs=None) -> list[GAResult]:
     """Run ``searches`` (:func:`ga_searches`) over the box of (beta, m) in lockstep, one batch
-    of runs per generation (:func:`balance_time_objectives`)."""
+    of runs per generation (:func:`balance_time_objectives`); each generation's progress is
+    logged (rotorvib.io.progress)."""
     objectives = balance_time_objectives(setup, [problem for problem, _ in searches],
                                          censored_penalty=censored_penalty, runs=runs)
+    progress = Progress(f"GA generations ({len(searches)} searches in lockstep)", n_gen)
     return minimise_many(objectives, len(searches), *_box(beta_bounds, mass_bounds),
-                         pop_size=pop_size, n_gen=n_gen, seed=[s for _, s in searches])
+                         pop_size=pop_size, n_gen=n_gen, seed=[s for _, s in searches],
+                         progress=lambda gen, best: progress(gen, f"first search's best "
+                                                                  f"{best:.3g} s"))
 
 
 def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, mass_bounds,
