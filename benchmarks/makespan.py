@@ -44,7 +44,9 @@ class Job:
 
     @property
     def duration(self) -> float:
-        return self.end - self.start
+        """Its wall time; never negative (a record whose end precedes its start, which
+        Snakemake writes for a job of no measurable time, counts as 0)."""
+        return max(self.end - self.start, 0.0)
 
 
 def _files(value) -> set[str]:
