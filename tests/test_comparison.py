@@ -242,3 +242,11 @@ def test_rows_that_name_one_cause_are_one_finding():
             Reproduced.of("C", "c", 5.0, "c1 at its lower bound")]
     table = build_table(values, rows)
     assert [r["finding"] for r in table] == ["C1", "C1", "C2"]
+
+
+def test_an_infinite_margin_is_said_in_words():
+    """A curve censored at one end rises without bound: the margin's text says so, never
+    "+inf"."""
+    row = {"margin": "inf", "uncertainty": "1e-05", "margin_unit": "s", "margin_basis": "b"}
+    assert margin_text(row) == "without bound +/- 1e-05 (s; b)"
+    assert margin_text({**row, "margin": "-inf"}).startswith("failing without bound")

@@ -130,3 +130,13 @@ def test_a_ga_claim_that_a_seed_decides_is_undetermined():
     by_seed = [0.004, 0.03, -0.02, -0.01, 0.05]  # two seeds outside
     assert Margin(inside, _seed_spread(inside, by_seed), "beta", "seeds").holds() is None
     assert Margin(inside, _seed_spread(inside, [0.004, 0.09, 0.05]), "beta", "s").holds()
+
+
+def test_a_rise_with_a_censored_end_is_said_in_words_not_as_infinity():
+    """A curve censored at its bottom rises by -inf in numbers: its row says so in words."""
+    from rotorvib.papers.b.curves import rise, rise_text
+
+    assert rise_text(rise([math.nan, 3.0])) == "censored at the bottom"
+    assert rise_text(rise([1.0, math.nan])) == "censored at the top"
+    assert rise_text(rise([math.nan, math.nan])) == "censored at both ends"
+    assert rise_text(rise([1.0, 1.5])) == "+0.5 s"

@@ -53,13 +53,21 @@ def test_reduced_run_builds_every_paper_c_result(run_dir):
 
 def test_no_row_prints_a_missing_number_as_nan(run_dir):
     """A number that does not exist (a run that never balances, an undetermined margin) is
-    said in words or left empty in the comparison and the discrepancy analysis, never printed
-    as 'nan' (Fig 11's row said 'beta0.1 nan s')."""
+    said in words or left empty in the comparison, the discrepancy analysis and the report's
+    captions, never printed as 'nan' (Fig 11's row said 'beta0.1 nan s') or as an infinity
+    (a curve censored at its bottom rose by '-inf s')."""
     cells = [cell for name in ("comparison.csv", "discrepancies.csv")
              for row in csv.reader((run_dir / "results" / name).open(newline=""))
              for cell in row]
     assert len(cells) > 1000
     assert [cell for cell in cells if re.search(r"\bnan\b", cell, re.I)] == []
+    # nor as an infinity ("IC1 -inf s") in a text, there or in the report's captions (a
+    # margin column may hold inf: a number a program reads)
+    texts = [row["explanation"] for row in csv.DictReader(
+        (run_dir / "results/comparison.csv").open(newline=""))]
+    captions = [p.read_text() for p in (run_dir / "results/report/captions").rglob("*.rst")]
+    assert len(captions) > 20
+    assert [c for c in texts + captions if re.search(r"[-+]?\binf\b", c, re.I)] == []
 
 
 def test_table2_peak_forces_match_the_paper(run_dir):

@@ -328,11 +328,19 @@ def _margin_values(margin: Margin | None) -> tuple:
 
 
 def margin_text(row: dict) -> str:
-    """A comparison row's margin as text, e.g. ``"+0.12 +/- 0.01 (relative; grid step)"``."""
+    """A comparison row's margin as text, e.g. ``"+0.12 +/- 0.01 (relative; grid step)"``; an
+    infinite margin or uncertainty in words (``"without bound"``, e.g. a curve censored at one
+    end), never as an infinity."""
     if row["margin"] is None or row["margin"] == "":
         return ""
     unit = f"{row['margin_unit']}; " if row["margin_unit"] else ""
-    return f"{float(row['margin']):+.3g} +/- {float(row['uncertainty']):.2g} ({unit}{row['margin_basis']})"
+
+    margin, spread = float(row["margin"]), float(row["uncertainty"])
+    said = (f"{margin:+.3g}" if math.isfinite(margin) else "no value" if math.isnan(margin)
+            else "without bound" if margin > 0 else "failing without bound")
+    spread_said = (f"{spread:.2g}" if math.isfinite(spread) else "no value"
+                   if math.isnan(spread) else "without bound")
+    return f"{said} +/- {spread_said} ({unit}{row['margin_basis']})"
 
 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")

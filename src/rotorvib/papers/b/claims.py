@@ -17,10 +17,10 @@ import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced, merge_variants
 from rotorvib.io.coords import labels, pick
-from rotorvib.papers.b.curves import (as_longest, dip_depth, faster_share, mean_over_ics,
-                                      largest_fall, rise, seconds_text, share_balanced_by,
-                                      timed, within, within_studied, argmin, argmin_interval,
-                                      roughness)
+from rotorvib.papers.b.curves import (argmin, argmin_interval, as_longest, dip_depth,
+                                      faster_share, largest_fall, mean_over_ics, rise,
+                                      rise_text, roughness, seconds_text, share_balanced_by,
+                                      timed, within, within_studied)
 from rotorvib.papers.b.row_values import (optimum_lead, reduction, runup_end,
                                          table1_at_paper_speeds)
 
@@ -115,7 +115,7 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
     ic12 = curves["IC1"] + curves["IC2"]
     rows.append(_claim("figs8_10_ic12_grow", timed(min(map(rise, ic12)), time_uncertainty),
                        f"{GROWS.format('beta')} per eps_bar: "
-                       + "; ".join(f"{ic} " + ", ".join(f"{rise(c):+.3g} s" for c in curves[ic])
+                       + "; ".join(f"{ic} " + ", ".join(rise_text(rise(c)) for c in curves[ic])
                                    for ic in ("IC1", "IC2"))
                        + "; the largest fall between balanced neighbours is "
                          f"{max(map(largest_fall, ic12)):.3g} s"))
@@ -130,7 +130,7 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
     rows.append(_claim("figs12_14_grow_with_mass",
                        timed(min(map(rise, mass_curves)), time_uncertainty),
                        f"{GROWS.format('mass')} per curve: "
-                       + ", ".join(f"{rise(c):+.3g} s" for c in mass_curves)
+                       + ", ".join(rise_text(rise(c)) for c in mass_curves)
                        + "; the largest fall between balanced neighbours is "
                          f"{max(map(largest_fall, mass_curves)):.3g} s"))
     spread = {}

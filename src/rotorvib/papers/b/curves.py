@@ -50,6 +50,17 @@ def rise(curve) -> float:
         return float(c[-1] - c[0])
 
 
+def rise_text(rise_s: float) -> str:
+    """A :func:`rise` for a row's text: ``+0.42 s``, or in words where a censored end makes it
+    no number of seconds (``-inf``: censored at the bottom only; ``+inf``: at the top only;
+    NaN: at both)."""
+    if np.isfinite(rise_s):
+        return f"{rise_s:+.3g} s"
+    if np.isnan(rise_s):
+        return "censored at both ends"
+    return "censored at the bottom" if rise_s < 0 else "censored at the top"
+
+
 def dip_depth(curve) -> float:
     """How far a curve's lowest point lies below both its ends (<= 0 when the lowest point is an
     end): a curve that first falls and then grows."""
