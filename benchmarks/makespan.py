@@ -93,41 +93,37 @@ def dependencies(jobs: list[Job]) -> dict[int, set[int]]:
             for i, job in enumerate(jobs)}
 
 
-def tails(jobs: list[Job], needs: dict[int, set[int]]) -> list[float]:
-    """For each job, the longest chain from its start to the end of the run (itself included)."""
-    users: dict[int, set[int]] = {i: set() for i in range(len(jobs))}
+def users_of(needs: dict[int, set[int]]) -> dict[int, set[int]]:
+    """For each job, the jobs that read what it made (the inverse of :func:`dependencies`)."""
+    users: dict[int, set[int]] = {i: set() for i in needs}
     for i, before in needs.items():
         for j in before:
             users[j].add(i)
-    order = _topological(needs)
+    return users
+
+
+def tails(jobs: list[Job], needs: dict[int, set[int]]) -> list[float]:
+    """For each job, the longest chain from its start to the end of the run (itself included),
+    from the last job back (``ValueError`` for records that form a cycle)."""
+    users = users_of(needs)
+    waiting = {i: len(u) for i, u in users.items()}
     tail = [0.0] * len(jobs)
-    for i in reversed(order):
+    done = [i for i, n in waiting.items() if n == 0]
+    for i in done:                                 # grows while it is walked
         tail[i] = jobs[i].duration + max((tail[u] for u in users[i]), default=0.0)
-    return tail
-
-
-def _topological(needs: dict[int, set[int]]) -> list[int]:
-    left = {i: set(before) for i, before in needs.items()}
-    order = []
-    ready = sorted(i for i, before in left.items() if not before)
-    while ready:
-        i = ready.pop()
-        order.append(i)
-        for j, before in left.items():
-            if i in before:
-                before.discard(i)
-                if not before:
-                    ready.append(j)
-    if len(order) != len(needs):
+        for j in needs[i]:
+            waiting[j] -= 1
+            if waiting[j] == 0:
+                done.append(j)
+    if len(done) != len(jobs):
         raise ValueError("the job records form a cycle")
-    return order
+    return tail
 
 
 def critical_chain(jobs: list[Job]) -> tuple[float, list[Job]]:
     """The longest chain of jobs through their dependencies, and its length (s)."""
     needs = dependencies(jobs)
-    tail = tails(jobs, needs)
-    users = {i: [u for u, before in needs.items() if i in before] for i in range(len(jobs))}
+    tail, users = tails(jobs, needs), users_of(needs)
     i = max(range(len(jobs)), key=tail.__getitem__)
     chain = [jobs[i]]
     while users[i]:
@@ -141,23 +137,21 @@ def simulated_makespan(jobs: list[Job], cores: int) -> float:
     free, the ready job with the longest remaining chain first; each takes one core for its
     measured duration."""
     needs = dependencies(jobs)
-    tail = tails(jobs, needs)
-    left = {i: set(before) for i, before in needs.items()}
-    ready = [(-tail[i], i) for i, before in left.items() if not before]
+    tail, users = tails(jobs, needs), users_of(needs)
+    waiting = {i: len(before) for i, before in needs.items()}
+    ready = [(-tail[i], i) for i, n in waiting.items() if n == 0]
     heapq.heapify(ready)
     running: list[tuple[float, int]] = []
-    now, done = 0.0, 0
-    while done < len(jobs):
+    now = 0.0
+    while ready or running:
         while ready and len(running) < cores:
             _, i = heapq.heappop(ready)
             heapq.heappush(running, (now + jobs[i].duration, i))
         now, i = heapq.heappop(running)
-        done += 1
-        for j, before in left.items():
-            if i in before:
-                before.discard(i)
-                if not before:
-                    heapq.heappush(ready, (-tail[j], j))
+        for j in users[i]:
+            waiting[j] -= 1
+            if waiting[j] == 0:
+                heapq.heappush(ready, (-tail[j], j))
     return now
 
 
