@@ -48,8 +48,8 @@ def write_api(app):
     import rotorvib
 
     modules = sorted(m.name for m in pkgutil.walk_packages(rotorvib.__path__, "rotorvib."))
-    order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers", "rotorvib.comparison",
-             "rotorvib.reproduced_csv",
+    order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers", "rotorvib.paper_values",
+             "rotorvib.choices", "rotorvib.comparison", "rotorvib.reproduced_csv",
              "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.io", "rotorvib.pipeline"]
     modules.sort(key=lambda m: (next(i for i, p in enumerate(order) if m.startswith(p)), m))
     text = "".join(f"## `{m}`\n\n```{{eval-rst}}\n.. automodule:: {m}\n   :members:\n```\n\n"

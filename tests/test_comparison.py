@@ -1,8 +1,9 @@
 import numpy as np
 import pytest
 
-from rotorvib.comparison import (Margin, Reproduced, build_table, claim_verdict,
-                                 margin_text, merge_variants, totals, verdict, with_findings)
+from rotorvib.choices import NO_CHOICE
+
+from rotorvib.comparison import build_table, claim_verdict, Margin, margin_text, merge_variants, Reproduced, totals, verdict, with_findings
 from rotorvib.reproduced_csv import read_reproduced, write_reproduced
 
 HOLDS, FAILS = Margin(0.2, 0.01, "s", "test"), Margin(-0.2, 0.01, "s", "test")
@@ -50,9 +51,10 @@ def test_claim_verdicts_from_variants():
 
 def test_a_claim_evaluated_under_two_variants_that_disagree_depends():
     rows = merge_variants({
-        "printed": [Reproduced.claim("B", "claim", HOLDS, "0.1 s"), Reproduced.of("B", "q", 1, "x")],
-        "consistent": [Reproduced.claim("B", "claim", FAILS, "never balances"),
-                       Reproduced.of("B", "q", 2, "x")]})
+        "printed": [Reproduced.claim("B", "claim", HOLDS, "0.1 s", choices=()),
+                    Reproduced.of("B", "q", 1, "x")],
+        "consistent": [Reproduced.claim("B", "claim", FAILS, "never balances", choices=()),
+                       Reproduced.of("B", "q", 2, "x")]}, "paper_b.kinematics = printed")
     table = build_table([{"paper": "B", "item": "F", "quantity": "claim", "unit": "",
                           "value": None, "source": "printed"},
                          {"paper": "B", "item": "F", "quantity": "q", "unit": "s", "value": 1.0,
@@ -64,9 +66,10 @@ def test_a_claim_evaluated_under_two_variants_that_disagree_depends():
 
 
 def test_reproduced_rows_round_trip(tmp_path):
-    rows = [Reproduced.claim("B", "c", {"printed": HOLDS, "consistent": None}, "why, and how"),
-            Reproduced.of("B", "q", 55.0, "x", implied=55.2), Reproduced.claim("A", "d", FAILS, ""),
-            Reproduced.claim("A", "e", Margin(float("inf"), 0.0, "", "no rival"), "x")]
+    rows = [Reproduced.claim("B", "c", {"printed": HOLDS, "consistent": None}, "why, and how", choices=()),
+            Reproduced.of("B", "q", 55.0, "x", implied=55.2), Reproduced.claim("A", "d", FAILS, "", choices=()),
+            Reproduced.claim("A", "e", Margin(float("inf"), 0.0, "", "no rival"), "x",
+                             choices=("paper_a.case (chosen)", "a grid"))]
     write_reproduced(rows, tmp_path / "r.csv")
     assert read_reproduced(tmp_path / "r.csv") == rows
 
@@ -80,16 +83,16 @@ def _values():
 
 def test_table_joins_and_requires_explanations():
     rows = build_table(_values(), [Reproduced.of("C", "q", 1.005, ""),
-                                   Reproduced.claim("C", "claim", HOLDS, "because")])
+                                   Reproduced.claim("C", "claim", HOLDS, "because", choices=())])
     assert [r["verdict"] for r in rows] == ["MATCH", "SUPPORTED"]
     with pytest.raises(ValueError, match="no explanation"):
         build_table(_values(), [Reproduced.of("C", "q", 2.0, ""),
-                                Reproduced.claim("C", "claim", HOLDS, "x")])
+                                Reproduced.claim("C", "claim", HOLDS, "x", choices=())])
     with pytest.raises(ValueError, match="no reproduced value"):
         build_table(_values(), [Reproduced.of("C", "q", 1.0, "")])
     with pytest.raises(ValueError, match="missing from the paper-values file"):
         build_table(_values(), [Reproduced.of("C", "q", 1.0, ""),
-                                Reproduced.claim("C", "claim", HOLDS, "x"),
+                                Reproduced.claim("C", "claim", HOLDS, "x", choices=()),
                                 Reproduced.of("C", "other", 1.0, "x")])
 
 
@@ -129,11 +132,11 @@ def test_a_claim_decided_inside_its_uncertainty_is_undetermined_and_shows_its_ma
     values = [{"paper": "B", "item": "GA", "quantity": "claim", "unit": "", "value": None,
                "source": "printed"}]
     inside = Margin(0.002, 0.03, "s", "half the range over 5 seeds")
-    row, = build_table(values, [Reproduced.claim("B", "claim", inside, "wins by 2 ms")])
+    row, = build_table(values, [Reproduced.claim("B", "claim", inside, "wins by 2 ms", choices=())])
     assert row["verdict"] == "UNDETERMINED"
     assert (row["margin"], row["uncertainty"], row["margin_unit"]) == (0.002, 0.03, "s")
     assert margin_text(row) == "+0.002 +/- 0.03 (s; half the range over 5 seeds)"
-    row, = build_table(values, [Reproduced.claim("B", "claim", Margin(0.04, 0.03, "s", "x"), "y")])
+    row, = build_table(values, [Reproduced.claim("B", "claim", Margin(0.04, 0.03, "s", "x"), "y", choices=())])
     assert row["verdict"] == "SUPPORTED"
 
 
@@ -141,13 +144,13 @@ def test_a_decided_claim_needs_a_margin_and_a_margin_a_nonnegative_uncertainty()
     values = [{"paper": "B", "item": "GA", "quantity": "claim", "unit": "", "value": None,
                "source": "printed"}]
     with pytest.raises(TypeError, match="needs a Margin or None, not bool"):
-        Reproduced.claim("B", "claim", True, "x")
+        Reproduced.claim("B", "claim", True, "x", choices=())
     with pytest.raises(ValueError, match="uncertainty must be >= 0"):
         Margin(1.0, -0.1, "s", "x")
     with pytest.raises(ValueError, match="uncertainty must be >= 0"):
         Margin(1.0, float("nan"), "s", "x")
     # undecidable for want of material: no margin, and UNDETERMINED
-    row, = build_table(values, [Reproduced.claim("B", "claim", None, "ref. [8] not given")])
+    row, = build_table(values, [Reproduced.claim("B", "claim", None, "ref. [8] not given", choices=())])
     assert row["verdict"] == "UNDETERMINED" and row["margin"] is None
 
 
@@ -198,13 +201,13 @@ def test_an_optimum_the_grid_cannot_resolve_is_undetermined():
 
 
 def test_a_calibrated_row_is_counted_apart_never_as_evidence(tmp_path):
-    from rotorvib.comparison import CALIBRATED, Margin, Reproduced, build_table, totals
+    from rotorvib.comparison import CALIBRATED, build_table, Margin, Reproduced, totals
 
     values = [{"paper": "B", "item": "Table 2", "quantity": "q", "unit": "", "value": None,
                "source": "theory", "read_off_figure": "no", "claim": "c", "quote_where": "",
                "quote_fa": "", "quote_en": ""}]
     row = Reproduced.claim("B", "q", Margin(1.0, 0.1, "N", "band"), "within the band",
-                           calibrated="R was fitted to it")
+                           calibrated="R was fitted to it", choices=())
     (built,) = build_table(values, [row])
     assert built["verdict"] == CALIBRATED and built["explanation"].startswith("not evidence")
     assert totals([built])[-1] == ("calibrated, not evidence (1 row, 1 finding): "
@@ -213,21 +216,54 @@ def test_a_calibrated_row_is_counted_apart_never_as_evidence(tmp_path):
 
 
 def test_moving_one_choice_flips_a_constructed_verdict():
-    """A claim evaluated under each declared alternative of a choice (here a tolerance): both
-    agree, it is decided; move one alternative across the margin and it DEPENDS on the choice,
-    naming it."""
-    from rotorvib.comparison import Margin, Reproduced, claim_verdict, describe_holds
+    """A claim evaluated under each declared alternative of a choice (here the reading of
+    "close"): while every alternative agrees it is decided; declare one across the margin and
+    it DEPENDS on the choice, naming the value; the comparison's CSV carries the choice and
+    what each alternative gave."""
+    from rotorvib.choices import Close, under_choice
+    from rotorvib.comparison import build_table, Margin, Reproduced
 
     off = 0.01005                             # the antiresonance's distance from resonance
 
-    def row(tolerances):
-        return Reproduced.claim("C", "q", {f"within {t:.0%}": Margin(t - off, 1e-9, "w", "s")
-                                           for t in tolerances}, "")
+    def row(close):
+        return Reproduced.claim("C", "q", close.margins(lambda c: Margin(c - off, 1e-9, "w", "s")),
+                                "why", choices=(close.choice,))
 
-    assert claim_verdict(row([0.05, 0.10]).holds) == "SUPPORTED"
-    flipped = row([0.01, 0.10])
-    assert claim_verdict(flipped.holds) == "DEPENDS"
-    assert describe_holds(flipped.holds) == "holds under within 10%; not under within 1%"
+    values = [{"paper": "C", "item": "Fig 5", "quantity": "q", "unit": "", "value": None,
+               "source": "printed"}]
+    (decided,) = build_table(values, [row(Close(0.1, (0.05, 0.2)))])
+    assert decided["verdict"] == "SUPPORTED"
+    assert decided["choices"] == ("comparison.close = 0.1 (chosen: the papers' 'close'; "
+                                  "alternatives 0.05, 0.2 evaluated)")
+    assert decided["alternatives"] == ("comparison.close = 0.1: holds; comparison.close = 0.05: "
+                                       "holds; comparison.close = 0.2: holds")
+    assert decided["margin"] == pytest.approx(0.1 - off)
+    (flipped,) = build_table(values, [row(Close(0.1, (0.01, 0.2)))])
+    assert flipped["verdict"] == "DEPENDS"
+    assert flipped["alternatives"].split("; ")[1] == "comparison.close = 0.01: fails"
+    assert flipped["explanation"].startswith("holds under comparison.close = 0.1, "
+                                             "comparison.close = 0.2; not under "
+                                             "comparison.close = 0.01: ")
+    # one choice inside another variant (kinematics): the names join, the verdicts stay apart
+    merged, = merge_variants({"printed": [row(Close(0.1, (0.01,)))],
+                              "consistent": [Reproduced.claim("C", "q", Margin(1, 0, "", "x"),
+                                                              "", choices=())]},
+                             "kinematics = printed")
+    assert merged.holds == (("printed & comparison.close = 0.1", True),
+                            ("printed & comparison.close = 0.01", False), ("consistent", True))
+    assert merged.choices[0] == "kinematics = printed"
+    assert under_choice(lambda v: None, "k", "a", ("b",)) == {"k = a": None, "k = b": None}
+
+
+def test_a_claim_states_its_choices_and_a_choice_cannot_break_the_csv():
+    with pytest.raises(TypeError):
+        Reproduced.claim("C", "q", Margin(1.0, 0.0, "", "x"), "why")       # no choices
+    with pytest.raises(ValueError, match="choice"):
+        Reproduced.claim("C", "q", None, "why", choices=("a | b",))
+    row = build_table([{"paper": "C", "item": "F", "quantity": "q", "unit": "", "value": None,
+                        "source": "printed"}],
+                      [Reproduced.claim("C", "q", Margin(1.0, 0.0, "", "x"), "why", choices=())])[0]
+    assert row["choices"] == NO_CHOICE and row["alternatives"] == ""
 
 
 def test_rows_that_name_one_cause_are_one_finding():

@@ -96,7 +96,12 @@ def test_rows_decide_on_the_whole_curve(beta_plane):
                                                   "zeta": plane("zeta", 1e-3, 10.0)})}
     above = rows["boundary_above_critical"]
     assert above.holds == (("", True),)
-    assert 0 < above.margin.value < 1e-3        # closest at the top of beta, ~ a / 1e4
+    # the least excess over the critical speed is set by the traced range (a / beta at its
+    # top, under 1e-3): the margin is a, the excess scaled by beta, which tends to a
+    a, spread = approach_coefficient(beta_plane)
+    assert above.margin.value == a and above.margin.unit == "beta x omega_bar"
+    assert 0.4 < a < 0.5 and spread < 1e-3
+    assert "the margin is a, not the least excess" in above.explanation
     assert rows["boundary_lowest_beta"].holds == (("", True),)
     assert rows["boundary_lowest_beta"].margin.value == pytest.approx(9.53e-4, rel=2e-2)
 

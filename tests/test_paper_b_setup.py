@@ -247,7 +247,8 @@ def test_an_uncertainty_run_without_a_time_has_none_and_the_closed_form_predicts
     case = {"beta": 0.2, "mass": 0.006, "eps_bar": 0.012, "speed": 220.0,
             "phi0_deg": (40.0, 45.0)}
     offsets = [0.0, -0.03, -0.1, -0.2]
-    x = [[0.1, 1e-3, 0.0, dm, 0.0] for dm in offsets]      # R, r0, eps, mass, k offsets
+    # R, zeta, r0, eps, mass, k offsets
+    x = [[0.1, setup.zeta, 1e-3, 0.0, dm, 0.0] for dm in offsets]
     out = run_case(setup, x, case, kinematics="printed")
     whirl = residual_whirl(M=setup.M, n=setup.n, mass=0.006 * (1 + np.array(offsets)),
                            eps_bar=0.012, R=0.1, k=setup.k, zeta=setup.zeta, speed=220.0)
@@ -264,7 +265,7 @@ def test_an_uncertainty_run_without_a_time_has_none_and_the_closed_form_predicts
     assert out["balance_time"][0] == direct((40.0, 45.0)).balance_time
     assert out["force_max"][0] == direct((40.0, 45.0)).force_max
     ics = {**case, "ics": [(40.0, 45.0), (110.0, 115.0)]}
-    mean = run_case(setup, [[0.1, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
+    mean = run_case(setup, [[0.1, setup.zeta, 1e-3, 0.0, 0.0, 0.0]], ics, kinematics="printed")
     assert mean["balance_time"][0] == pytest.approx(
         np.mean([direct(p).balance_time for p in ics["ics"]]), rel=1e-12)
 

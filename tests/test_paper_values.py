@@ -7,7 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.comparison import Margin, Reproduced, build_table, paper_says, read_paper_values
+from rotorvib.comparison import build_table, Margin, Reproduced
+
+from rotorvib.paper_values import paper_says, read_paper_values
 
 ROOT = Path(__file__).resolve().parents[1]
 VALUES = read_paper_values(ROOT / "data/paper_values.csv")
@@ -44,7 +46,7 @@ def test_numbers_and_our_own_claims_quote_nothing():
 def test_a_claim_row_of_the_comparison_carries_the_papers_words():
     row = next(r for r in VALUES if r["quantity"] == "fig5_damped_best")
     table = build_table([row], [Reproduced.claim("C", "fig5_damped_best",
-                                                 Margin(-1.0, 0.0, "relative", "x"), "why")])
+                                                 Margin(-1.0, 0.0, "relative", "x"), "why", choices=())])
     assert table[0]["paper_says"] == paper_says(row)
     assert table[0]["paper_says"].startswith('"Therefore the optimum dual absorber with damping '
                                              'performs better at all frequencies."')

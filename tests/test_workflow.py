@@ -17,10 +17,12 @@ from pathlib import Path
 import netCDF4
 import numpy as np
 import pytest
+import yaml
 
+import rotorvib.comparison as comparison
 from conftest import ROOT, cf_check
 from forked_snakemake import ForkedSnakemake
-from rotorvib.comparison import read_paper_values
+from rotorvib.paper_values import read_paper_values
 from workflow_runs import (BIN, REDUCED, copy_run, digests, environment, job_records,
                            planned_outputs, run_block_jobs, snakemake, summary_rows,
                            to_update)
@@ -68,6 +70,39 @@ def test_no_row_prints_a_missing_number_as_nan(run_dir):
     captions = [p.read_text() for p in (run_dir / "results/report/captions").rglob("*.rst")]
     assert len(captions) > 20
     assert [c for c in texts + captions if re.search(r"[-+]?\binf\b", c, re.I)] == []
+
+
+def test_every_decided_claim_names_its_choices_and_what_each_alternative_gave(run_dir):
+    """Each decided claim row of the comparison lists the project's choices it rests on, each
+    led by a configuration key that exists (or a constant of rotorvib.comparison), and a
+    DEPENDS row lists the alternatives it was evaluated under with what each gave."""
+    config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+    rows = list(csv.DictReader((run_dir / "results/comparison.csv").open(newline="")))
+    decided = [r for r in rows if r["paper_value"] == ""
+               and r["verdict"] in ("SUPPORTED", "NOT SUPPORTED", "DEPENDS")]
+    assert len(decided) > 40
+    assert [r["quantity"] for r in decided if not r["choices"]] == []
+    keys = {m.group(0) for r in rows for choice in r["choices"].split(" | ")
+            for m in [re.match(r"(paper_[abc]|comparison)(\.\w+)+", choice)] if m}
+    assert len(keys) > 30
+
+    def exists(key):
+        head, *path = key.split(".")
+        if head == "comparison" and hasattr(comparison, path[0]):
+            return True
+        node = config[head]
+        for part in path:
+            if not isinstance(node, dict) or part not in node:
+                return False
+            node = node[part]
+        return True
+
+    assert sorted(k for k in keys if not exists(k)) == []
+    for r in (r for r in decided if r["verdict"] == "DEPENDS"):
+        outcomes = {part.rsplit(": ", 1)[1] for part in r["alternatives"].split("; ")}
+        assert "holds" in outcomes and outcomes - {"holds"}, r["quantity"]
+    zeta = next(r for r in rows if r["quantity"] == "zeta_reproduces_printed_times")
+    assert zeta["alternatives"].count(": ") == 4          # two kinematics x two definitions
 
 
 def test_table2_peak_forces_match_the_paper(run_dir):

@@ -14,6 +14,8 @@ reproduced values; this module joins the two and assigns a verdict:
   grid whose neighbours lie within the curve's own roughness) that holds the paper's value is
   UNDETERMINED unless it is a MATCH or EXPECTED already: the reproduction cannot tell them apart;
 * a chosen or theoretical value: EXPECTED (within 1 %) or UNEXPECTED, counted apart;
+* a claim of the reproduction's own beyond the papers (source ``theory``, e.g. a law it
+  proposes) is judged as a claim and counted apart from the papers' claims;
 * a claim without a number: SUPPORTED, NOT SUPPORTED or DEPENDS from whether it holds under each
   variant it was evaluated under (kinematics, constructions); DEPENDS names the variants under
   which it holds.  UNDETERMINED when no variant decides it.  A claim carries its
@@ -28,29 +30,37 @@ reproduced values; this module joins the two and assigns a verdict:
 
 from __future__ import annotations
 
-import csv
 import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from rotorvib.choices import CHOICE_SEPARATOR, alternatives_text, choices_text, joined
 from rotorvib.io.tables import write_table
+from rotorvib.paper_values import paper_says
 
 COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reproduced",
            "rel_error", "paper_says", "margin", "uncertainty", "margin_unit", "margin_basis",
-           "verdict", "finding", "explanation")
-SOURCES = ("printed", "chosen", "theory")
+           "verdict", "finding", "choices", "alternatives", "explanation")
 MATCH_TOL = 0.01
 MINOR_TOL = 0.10
+#: The tolerances a number's verdict rests on, as its ``choices`` name them.
+TOLERANCES_CHOSEN = (f"comparison.MATCH_TOL = {MATCH_TOL:g}, MINOR_TOL = {MINOR_TOL:g} (the "
+                     "verdicts' relative tolerances)")
 UNDETERMINED = "UNDETERMINED"
 NUMERIC_VERDICTS = ("MATCH", "MINOR", "MAJOR", "PAPER-INCONSISTENT", UNDETERMINED)
 EXPECTATION_VERDICTS = ("EXPECTED", "UNEXPECTED", UNDETERMINED)
 CLAIM_VERDICTS = ("SUPPORTED", "NOT SUPPORTED", "DEPENDS", UNDETERMINED)
 CALIBRATED = "CALIBRATED"
+CLAIMS = "the papers' claims"
+#: Claims of the reproduction's own beyond the papers (source ``theory``): findings, never
+#: counted as the papers' claims.
+HYPOTHESES = "hypotheses beyond the papers"
 #: The kinds of row and their verdicts, as the totals count them.
 VERDICT_GROUPS = (("printed numbers", NUMERIC_VERDICTS),
                   ("chosen or theoretical values", EXPECTATION_VERDICTS),
-                  ("claims", CLAIM_VERDICTS),
+                  (CLAIMS, CLAIM_VERDICTS),
+                  (HYPOTHESES, CLAIM_VERDICTS),
                   ("calibrated, not evidence", (CALIBRATED,)))
 
 
@@ -96,7 +106,10 @@ class Reproduced:
     from ``reproduced``; ``margin`` (claims) is the reproduction's :class:`Margin`;
     ``calibrated`` names the calibration fitted to the paper's value, where one was; ``cause``
     names the one cause several rows share, where their explanations differ in more than their
-    numbers (the finding they make, :func:`with_findings`)."""
+    numbers (the finding they make, :func:`with_findings`); ``choices`` the project's choices
+    the row rests on, each as ``"key = value (why)"`` (a configuration key or a constant of
+    this module): a tolerance, a parameter the paper does not give, a grid, a range's edge.
+    Those evaluated under alternatives name them in ``holds`` (:func:`under_choice`)."""
 
     paper: str
     quantity: str
@@ -109,24 +122,34 @@ class Reproduced:
     interval: tuple[float, float] | None = None
     calibrated: str = ""
     cause: str = ""
+    choices: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        for choice in self.choices:
+            if not choice.strip() or CHOICE_SEPARATOR in choice:
+                raise ValueError(f"{self.quantity}: a choice must be a non-empty text without "
+                                 f"{CHOICE_SEPARATOR!r}, not {choice!r}")
 
     @classmethod
     def of(cls, paper: str, quantity: str, value, explanation: str,
            implied: float | None = None,
-           interval: tuple[float, float] | None = None, cause: str = "") -> "Reproduced":
+           interval: tuple[float, float] | None = None, cause: str = "",
+           choices: tuple[str, ...] = ()) -> "Reproduced":
         """A numeric row with ``value`` as float."""
         return cls(paper, quantity, float(value), explanation,
                    implied=None if implied is None else float(implied),
                    interval=None if interval is None else (float(interval[0]),
                                                             float(interval[1])),
-                   cause=cause)
+                   cause=cause, choices=tuple(choices))
 
     @classmethod
-    def claim(cls, paper: str, quantity: str, holds, explanation: str,
-              calibrated: str = "") -> "Reproduced":
+    def claim(cls, paper: str, quantity: str, holds, explanation: str, *,
+              choices: tuple[str, ...], calibrated: str = "") -> "Reproduced":
         """A claim row; ``holds`` is a :class:`Margin` (the claim holds as the margin decides),
         None (undecidable, e.g. for want of material the paper does not give) or a mapping
-        variant -> Margin/None; ``calibrated`` as the class says."""
+        variant -> Margin/None; ``choices`` (required: a claim states what it rests on, ``()``
+        for a test of the paper's own numbers by exact or closed-form arithmetic) and
+        ``calibrated`` as the class says."""
         pairs = tuple(holds.items()) if isinstance(holds, dict) else (("", holds),)
         for k, v in pairs:
             if not (v is None or isinstance(v, Margin)):
@@ -134,7 +157,7 @@ class Reproduced:
                                 f"not {type(v).__name__}")
         return cls(paper, quantity, None, explanation,
                    holds=tuple((str(k), None if v is None else v.holds()) for k, v in pairs),
-                   margin=pairs[0][1], calibrated=calibrated)
+                   margin=pairs[0][1], calibrated=calibrated, choices=tuple(choices))
 
 
 def within_band(ds, quantity: str, margin: tuple[float, float]) -> Margin:
@@ -206,12 +229,15 @@ def describe_holds(holds) -> str:
     return "; ".join(parts)
 
 
-def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reproduced]:
+def merge_variants(rows_by_variant: dict[str, list[Reproduced]],
+                   choice: str) -> list[Reproduced]:
     """One row per quantity from rows evaluated under several variants (e.g. kinematics).
 
     The first variant is the reproduction: numeric rows keep its value and quote the others';
-    claim rows hold under each variant as that variant's row says, and quote each variant's
-    explanation where it differs from the first."""
+    claim rows hold under each variant (and each alternative of a choice evaluated within it,
+    :func:`under_choice`) as that variant's row says, and quote each variant's explanation
+    where it differs from the first. The variants are a choice too, ``choice`` (e.g.
+    ``"paper_b.kinematics = printed (...)"``), which leads every merged row's choices."""
     (first, rows), *others = rows_by_variant.items()
     other = {name: {r.quantity: r for r in rs} for name, rs in others}
     merged = []
@@ -222,49 +248,21 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]]) -> list[Reprodu
             merged.append(Reproduced(row.paper, row.quantity, row.reproduced,
                                      row.explanation + quoted, implied=row.implied,
                                      variants=tuple((n, r.reproduced) for n, r in alt.items()),
-                                     interval=row.interval, cause=row.cause))
+                                     interval=row.interval, cause=row.cause,
+                                     choices=(choice, *row.choices)))
             continue
-        holds = ((first, row.holds[0][1]),) + tuple((n, r.holds[0][1]) for n, r in alt.items())
+        holds = tuple((joined(name, k), h) for name, r in (((first, row),) + tuple(alt.items()))
+                      for k, h in r.holds)
         text = f"{first}: {row.explanation}" + "".join(
             f" | {name}: {r.explanation}" for name, r in alt.items()
             if r.explanation != row.explanation)
         merged.append(Reproduced(row.paper, row.quantity, None, text, holds=holds,
-                                 margin=row.margin))
+                                 margin=row.margin, calibrated=row.calibrated, cause=row.cause,
+                                 choices=(choice, *row.choices)))
     return merged
 
 
-def float_or_none(text: str) -> float | None:
-    """A CSV cell as a number, or None where it is empty."""
-    return float(text) if text.strip() else None
-
-
-def read_paper_values(path: str | Path) -> list[dict]:
-    """The rows of the paper-values file; ``ValueError`` for a row with more fields than the
-    header (an unquoted comma would cut a claim's text short) or an unknown source."""
-    with open(path, newline="", encoding="utf-8") as fh:
-        rows = [row for row in csv.DictReader(fh) if not row["paper"].startswith("#")]
-    for row in rows:
-        if None in row:
-            raise ValueError(f"{path}: {row['quantity']}: more fields than the header "
-                             f"({row[None]!r}): quote a text that holds a comma")
-        row["value_text"] = row["value"]
-        row["value"] = float_or_none(row["value"])
-        if row["source"] not in SOURCES:
-            raise ValueError(f"{path}: {row['quantity']}: source {row['source']!r} is not one of "
-                             f"{SOURCES}")
-    return rows
-
-
 MARGIN_COLUMNS = ("margin", "uncertainty", "margin_unit", "margin_basis")
-
-
-def paper_says(value_row: dict) -> str:
-    """A claim's sentence as the paper words it (English rendering of the quote in the
-    paper-values file, with where it stands), or empty for a number or a claim of our own."""
-    quote, where = value_row.get("quote_en", ""), value_row.get("quote_where", "")
-    if quote:
-        return f'"{quote}" ({where})'
-    return f"({where})" if where else ""
 
 
 def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[dict]:
@@ -316,7 +314,8 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
                       "unit": p["unit"], "source": p["source"], "paper_value": p["value"],
                       "reproduced": r.reproduced, "rel_error": rel, "verdict": verdict_,
                       "explanation": explanation, "paper_says": paper_says(p),
-                      "cause": r.cause,
+                      "cause": r.cause, "choices": choices_text(r, TOLERANCES_CHOSEN),
+                      "alternatives": alternatives_text(r),
                       **dict(zip(MARGIN_COLUMNS, _margin_values(r.margin)))})
     return with_findings(table)
 
@@ -365,31 +364,28 @@ def with_findings(table: list[dict]) -> list[dict]:
     return rows
 
 
-def paper_values_of(path: str | Path, paper: str) -> dict[str, float | None]:
-    """``{quantity: value}`` of one paper from the paper-values file."""
-    return {row["quantity"]: row["value"] for row in read_paper_values(path) if row["paper"] == paper}
-
-
 def group_of(row: dict) -> str:
     """The verdict group (:data:`VERDICT_GROUPS`) of a comparison row: a calibrated row apart;
-    a claim has no paper value; a number is printed, or chosen or theoretical."""
+    a claim has no paper value, and is the paper's (printed) or a hypothesis of the
+    reproduction's own; a number is printed, or chosen or theoretical."""
     if row.get("verdict") == CALIBRATED:
         return VERDICT_GROUPS[-1][0]
     if row["paper_value"] in (None, ""):
-        return "claims"
+        return CLAIMS if row["source"] == "printed" else HYPOTHESES
     return "printed numbers" if row["source"] == "printed" else "chosen or theoretical values"
 
 
 def totals(table: list[dict]) -> list[str]:
-    """Verdict counts of rows and of distinct findings (:func:`with_findings`) in three groups:
-    printed numbers, chosen/theoretical values, claims (a number's UNDETERMINED, nothing to
-    compare, is named only where there is one), e.g. ``"MATCH 20 (6 findings)"``."""
+    """Verdict counts of rows and of distinct findings (:func:`with_findings`) in the groups of
+    :data:`VERDICT_GROUPS` (a number's UNDETERMINED, nothing to compare, is named only where
+    there is one), e.g. ``"MATCH 20 (6 findings)"``."""
     lines = []
     for name, verdicts in VERDICT_GROUPS:
         group = [row for row in table if group_of(row) == name]
         found = {v: {r["finding"] for r in group if r["verdict"] == v} for v in verdicts}
         counts = {v: sum(r["verdict"] == v for r in group) for v in verdicts}
-        shown = [v for v in verdicts if v != UNDETERMINED or name == "claims" or counts[v]]
+        shown = [v for v in verdicts if v != UNDETERMINED or verdicts is CLAIM_VERDICTS
+                 or counts[v]]
         rows = f"{len(group)} row{'' if len(group) == 1 else 's'}"
         lines.append(f"{name} ({rows}, {_findings(set().union(*found.values()))}): "
                      + ", ".join(f"{v} {counts[v]}" + (f" ({_findings(found[v])})"
@@ -408,8 +404,11 @@ def verdict_definitions() -> str:
             "own numbers imply another value, which the reproduction agrees with). Values the "
             "paper does not print (source chosen or theory): EXPECTED (<= "
             f"{100 * MATCH_TOL:g} %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT SUPPORTED, "
-            "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED. "
-            "Each claim carries its margin (positive where it holds) and the margin's "
+            "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED; "
+            "the reproduction's own hypotheses beyond the papers are counted apart from the "
+            "papers' claims. Each claim names the choices it rests on and the alternatives it "
+            "was evaluated under, and carries its margin (positive where it holds) and the "
+            "margin's "
             "uncertainty; a margin inside its uncertainty decides nothing: UNDETERMINED. "
             "A number with nothing to compare (every run censored) is UNDETERMINED. "
             "A row whose paper value a calibration of the reproduction was fitted to is "

@@ -8,7 +8,11 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-from rotorvib.comparison import MARGIN_COLUMNS, Margin, Reproduced, float_or_none
+from rotorvib.choices import CHOICE_SEPARATOR
+
+from rotorvib.comparison import MARGIN_COLUMNS, Margin, Reproduced
+
+from rotorvib.paper_values import float_or_none
 
 _HOLDS_TEXT = {True: "yes", False: "no", None: "undetermined"}
 
@@ -30,7 +34,11 @@ def _variants_from_text(text: str):
 
 REPRODUCED_COLUMNS = ("paper", "quantity", "reproduced", "holds", "implied", "variants",
                       *MARGIN_COLUMNS, "interval", "calibrated", "cause",
-                      "explanation")
+                      "choices", "explanation")
+
+
+def _choices_from_text(text: str) -> tuple[str, ...]:
+    return tuple(text.split(CHOICE_SEPARATOR)) if text else ()
 
 
 def _interval_from_text(text: str) -> tuple[float, float] | None:
@@ -60,7 +68,7 @@ def read_reproduced(path: str | Path) -> list[Reproduced]:
                            r["explanation"], _holds_from_text(r["holds"]),
                            float_or_none(r["implied"]), _variants_from_text(r["variants"]),
                            _margin_from_text(r), _interval_from_text(r["interval"]),
-                           r["calibrated"], r["cause"])
+                           r["calibrated"], r["cause"], _choices_from_text(r["choices"]))
                 for r in csv.DictReader(fh)]
 
 
@@ -75,4 +83,5 @@ def write_reproduced(rows: list[Reproduced], path: str | Path) -> None:
                              _holds_to_text(r.holds), "" if r.implied is None else repr(r.implied),
                              ";".join(f"{k}={v!r}" for k, v in r.variants),
                              *_margin_cells(r.margin), _interval_text(r.interval),
-                             r.calibrated, r.cause, r.explanation])
+                             r.calibrated, r.cause, CHOICE_SEPARATOR.join(r.choices),
+                             r.explanation])

@@ -65,8 +65,9 @@ except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
-# the comparison's reading of the papers' words ("close"), shared by every paper's claims
-CLOSE = config["comparison"]["close"]
+# the comparison's reading of the papers' words ("close" and its alternatives), shared by
+# every paper's claims (rotorvib.comparison.Close)
+CLOSE = config["comparison"]
 # Where every output goes: results/ for the paper configuration, its own folder for another
 # (config key `results`; the reduced configuration writes to results/reduced).
 RESULTS_DIR = config["results"]

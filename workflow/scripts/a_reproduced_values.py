@@ -2,7 +2,9 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.comparison import paper_values_of
+from rotorvib.choices import Close
+
+from rotorvib.paper_values import paper_values_of
 from rotorvib.reproduced_csv import write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.a.claims import reproduce
@@ -13,5 +15,5 @@ data = {name: read_dataset(path, producers) for name, path in snakemake.input.it
         if name != "paper_values"}
 p = snakemake.params
 rows = reproduce(**data, case_beta=p.case["beta"], window=p.zoom[1] - p.zoom[0],
-                 close=p.close, rk=p.rk, paper_values=paper_values_of(snakemake.input.paper_values, "A"))
+                 close=Close.from_config(p.close), rk=p.rk, paper_values=paper_values_of(snakemake.input.paper_values, "A"))
 write_reproduced(rows, snakemake.output[0])

@@ -6,7 +6,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 import sys
 
-from rotorvib.comparison import read_paper_values
+from rotorvib.paper_values import read_paper_values
 from rotorvib.reproduced_csv import read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
 from rotorvib.pipeline.job import job_config

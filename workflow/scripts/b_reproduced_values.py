@@ -2,15 +2,21 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.comparison import merge_variants, paper_values_of
+from rotorvib.choices import Close
+
+from rotorvib.comparison import merge_variants
+
+from rotorvib.paper_values import paper_values_of
 from rotorvib.reproduced_csv import write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.boundaries import boundary_rows
+from rotorvib.papers.b.choices import kinematics_choice
 from rotorvib.papers.b.claims import reproduce
 from rotorvib.papers.b.ga_law import ga_law_rows
 from rotorvib.papers.b.law import law_rows, support_damping_rows, trend_rows
 from rotorvib.papers.b.pareto import pareto_rows
 from rotorvib.papers.b.uncertainty import uncertainty_rows
+from rotorvib.papers.b.zeta_inversion import zeta_rows
 
 job.start(snakemake.log[0])
 producers = snakemake.params.input_producers  # each input dataset's rule and configuration
@@ -26,13 +32,14 @@ def take(prefix: str) -> dict:
 
 
 pareto, uncertainty, boundaries = take("pareto_"), take("uncertainty_"), take("boundary_")
-law, ga_law = data.pop("law"), data.pop("ga_law")
+law, ga_law, zeta = data.pop("law"), data.pop("ga_law"), data.pop("zeta_inversion")
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  r_threshold=p.r_threshold, time_uncertainty=p.time_uncertainty,
                  paper_values=paper)
-rows += merge_variants({kin: pareto_rows(ds) for kin, ds in pareto.items()})
-rows += uncertainty_rows(uncertainty, paper) + law_rows(law, p.close) + trend_rows(law)
+rows += merge_variants({kin: pareto_rows(ds) for kin, ds in pareto.items()},
+                       kinematics_choice(pareto))
+rows += uncertainty_rows(uncertainty, paper) + law_rows(law, Close.from_config(p.close)) + trend_rows(law)
 rows += support_damping_rows(law, p.zeta, neutral=p.neutral) + ga_law_rows(ga_law)
-rows += boundary_rows(boundaries)
+rows += boundary_rows(boundaries) + zeta_rows(zeta)
 write_reproduced(rows, snakemake.output[0])

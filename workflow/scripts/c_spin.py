@@ -13,5 +13,6 @@ job.start(snakemake.log[0])
 p = snakemake.params
 w = np.linspace(p.grid["w_min"], p.grid["w_max"], p.grid["n_points"])
 ds = spin_dataset(Rotor(**p.rotor), dual_absorber(**p.table2), n=p.spin["n"],
-                  realistic=p.spin["realistic_rpm"] * np.pi / 30, w=w)
+                  realistic=p.spin["realistic_rpm"] * np.pi / 30, w=w,
+                  alternatives=[rpm * np.pi / 30 for rpm in p.spin["alternative_rpm"]])
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -51,6 +51,11 @@ def study_size_problems(b: dict) -> list[str]:
     grids["paper_b.table1.mass.n"] = (b["table1"]["mass"]["n"], 1,
                                       conditions * len(b["table1"]["speeds"]))
     grids["paper_b.basin.n"] = (b["basin"]["n"], 2, len(b["basin"]["cases"]) * len(b["kinematics"]))
+    # the zeta inversion: Fig 7's run, Table 1's speeds x ICs and Table 2's rows at each zeta
+    printed_runs = 1 + len(b["table1"]["speeds"]) * len(b["initial_conditions"]) \
+        + len(b["table2"]["cases"])
+    grids["paper_b.zeta_inversion.zeta.n"] = (b["zeta_inversion"]["zeta"]["n"], 1,
+                                              printed_runs * len(b["kinematics"]))
     problems = []
     for key, (n, power, times) in grids.items():
         if (runs := n ** power * times) > MAX_STUDY_RUNS:
@@ -122,6 +127,9 @@ def run_budget_problems(b: dict) -> list[str]:
              "paper_b.pareto.speed": b["pareto"]["speed"],
              "paper_b.machine.k": omega_n,
              "paper_b.machine.zeta": 2 * machine["zeta"] * omega_n,
+             "paper_b.zeta_inversion.zeta": 2 * b["zeta_inversion"]["zeta"]["max"] * omega_n,
+             "paper_b.uncertainty.ranges.zeta": 2 * max(b["uncertainty"]["ranges"]["zeta"])
+             * omega_n,
              "paper_b.ga.beta": max(b["ga"]["beta"]) * omega_n,
              "paper_b.table1.beta": b["table1"]["beta"] * omega_n}
     for name, study in b["balance_studies"].items():
@@ -202,6 +210,18 @@ def distance_problems(c: dict) -> list[str]:
             f"exceed {-nearest:g} m"]
 
 
+def spin_problems(c: dict) -> list[str]:
+    """Paper C's spin study follows Table 2's absorber up to 99 % of its first spring loss,
+    sqrt(2 k / m) of a set: every machine speed the spin claim is evaluated at must lie below."""
+    t2 = c["table2"]
+    loss = min(np.sqrt(2 * t2[f"k{j}"] / t2[f"m{j}"]) for j in (1, 2)) * 30 / np.pi
+    speeds = {"paper_c.spin.realistic_rpm": [c["spin"]["realistic_rpm"]],
+              "paper_c.spin.alternative_rpm": c["spin"]["alternative_rpm"]}
+    return [f"config key '{key}': {rpm:g} rpm is beyond the spins followed, up to "
+            f"{0.99 * loss:.6g} rpm (99 % of Table 2's first spring loss sqrt(2k/m))"
+            for key, values in speeds.items() for rpm in values if rpm > 0.99 * loss]
+
+
 def ross_problems(b: dict) -> list[str]:
     """The ROSS cross-check's steady responses are at speeds above zero (at rest there is no
     unbalance force to respond to; found by the fuzzer: a speed of 0 failed inside b_ross)."""
@@ -240,7 +260,8 @@ def problems(config: dict) -> list[str]:
     run, a GA seed repeated among its spread seeds (the spread would shrink), a ball mass
     below the existence bound, a run the engine would refuse, a stability-boundary plane that
     cannot start, a GA-optimum study with nothing to fit, a Fig 6 claim about a curve the
-    mass-ratio family does not draw, a distance offset through the disk centre, a ROSS speed
+    mass-ratio family does not draw, a distance offset through the disk centre, a machine speed
+    beyond the absorbers' spring loss, a ROSS speed
     of zero, a tolerance finer than double precision, a stability map of one point along an
     axis, a grid study of more run-ups than a job can hold."""
     b = config["paper_b"]
@@ -260,5 +281,6 @@ def problems(config: dict) -> list[str]:
     return (found + existence_problems(b) + run_budget_problems(b) + study_size_problems(b)
             + boundary_problems(b)
             + ga_law_problems(b) + fig6_problems(config["paper_c"])
-            + distance_problems(config["paper_c"]) + ross_problems(b)
+            + distance_problems(config["paper_c"]) + spin_problems(config["paper_c"])
+            + ross_problems(b)
             + tolerance_problems(config) + map_problems(b))

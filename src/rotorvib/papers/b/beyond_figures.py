@@ -212,3 +212,41 @@ def ga_law(ga_law, paper):
             title=f"change of the balance time from each optimum (step {float(ga_law.step):g})")
     ax2.legend(fontsize=7)
     return fig
+
+
+def zeta_inversion(zeta_inversion, paper, zeta):
+    """Beyond the paper: for each printed time of Fig 7 and Tables 1-2, the support damping
+    ratios zeta at which each model (kinematics, balance-time definition) reproduces it
+    (bars), the stated zeta and each model's zeta of least worst error; one zeta reproduces
+    them all where a vertical line crosses every bar of one colour; ``zeta`` is the configured
+    (stated) value."""
+    ds = zeta_inversion
+    cases = labels(ds, "case")
+    models = [(k, d) for k in labels(ds, "kinematics") for d in labels(ds, "definition")]
+    fig, ax = figure(figsize=(9.0, 0.6 * len(cases) + 1.8))
+    zetas = ds.zeta.values
+    half = float(np.min(np.diff(zetas))) / 2 if zetas.size > 1 else 0.0
+    height = 0.8 / len(models)
+    for j, (kin, definition) in enumerate(models):
+        error = ds.error.sel(kinematics_name=kin, definition_name=definition)
+        for i, case in enumerate(cases):
+            ok = zetas[error.sel(case_name=case).values <= 1.0]
+            y = i + (j - (len(models) - 1) / 2) * height
+            ax.barh([y] * ok.size, 2 * half, left=ok - half, height=0.9 * height,
+                    color=f"C{j}", label=None)
+        best = float(ds.best_zeta.sel(kinematics_name=kin, definition_name=definition))
+        worst = float(ds.least_worst_error.sel(kinematics_name=kin, definition_name=definition))
+        ax.axvline(best, color=f"C{j}", ls=":", lw=1)
+        ax.plot([], [], "s", color=f"C{j}",
+                label=f"{kin}, {definition}: least worst error {worst:.2g} tol at "
+                      f"zeta = {best:.4g}")
+    ax.axvline(zeta, color="k", ls="--", lw=1,
+               label=f"zeta = {zeta:g} (stated for Figs 2-3, 8-14; configured)")
+    ax.set_yticks(range(len(cases)), [f"{c} ({float(p):g} s)"
+                                      for c, p in zip(cases, ds.printed.values)])
+    ax.invert_yaxis()
+    ax.set(xlabel="support damping ratio zeta (1)", xlim=(zetas[0] - half, zetas[-1] + half),
+           title="zeta at which each printed time is reproduced\n(within max(1 %, half its "
+                 "last printed digit); no bar: at no zeta of the grid)")
+    ax.legend(fontsize=7, loc="lower right")
+    return fig

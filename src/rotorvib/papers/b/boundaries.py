@@ -27,6 +27,7 @@ from scipy.optimize import brentq
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.methods.continuation import gradient, tangent, trace, turning_points
+from rotorvib.papers.b.choices import BOUNDARY_CHOICES
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta, on_boundary
 from rotorvib.papers.b.setup import dataset_attrs
 from rotorvib.papers.b.stability_maps import balanced_eigenvalues, growth_rate
@@ -274,18 +275,26 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
         f"critical speed (closest {float((w.omega_onset - w.critical_speed).min()):.1e})"
         for plane, e in edges.items()
         for w in [e.isel(point=e.curve.values > 0)] if w.sizes["point"])
+    # The excess tends to 0 as beta grows (onset -> critical speed as a / beta): its least value
+    # is set by the traced range's top, not by the balancer. The margin is a, the scale-free
+    # excess, unless another plane's onset falls below its critical speed.
+    worst_other = min((float(excess[p].min()) for p in excess if p != "beta"), default=np.inf)
+    margin = (Margin(worst_other, error, "omega_bar", "continuation; uncertainty: the largest "
+                     "speed error bound on the curve") if worst_other < 0 else
+              Margin(a, a_spread, "beta x omega_bar", "beta (omega_onset - omega_c) at the top "
+                     "of the traced beta range, which tends to a; uncertainty: its spread there"))
     return [
         Reproduced.claim(
-            "B", "boundary_above_critical",
-            Margin(float(excess[lowest][i]), error, "omega_bar",
-                   "continuation; uncertainty: the largest speed error bound on the curve"),
+            "B", "boundary_above_critical", margin,
             f"on the whole boundary traced by continuation ({spans}) the onset lies above the "
             f"critical speed, closest {excess[lowest][i]:.2e} at {lowest} = "
-            f"{float(edges[lowest][lowest][i]):.3g}. As beta grows the onset tends to the "
-            f"critical speed from above as a / beta, a = {a:.4f} (beta (omega - omega_c) at "
-            f"the top within {a_spread:.1e} of it): the balls then follow the rotor "
+            f"{float(edges[lowest][lowest][i]):.3g}, a distance the traced range sets: as "
+            f"beta grows the onset tends to the critical speed from above as a / beta, a = "
+            f"{a:.4f} (beta (omega - omega_c) at the top within {a_spread:.1e} of it), so the "
+            "onset's infimum is the critical speed itself and the margin is a, not the least "
+            "excess. The balls then follow the rotor "
             "quasi-statically, and the reduced ball equation's trace changes sign exactly at "
-            f"the critical speed{windows}"),
+            f"the critical speed{windows}", choices=BOUNDARY_CHOICES),
         Reproduced.claim(
             "B", "boundary_lowest_beta",
             Margin(b_min, b_moves, "1", "the least beta on the boundary; uncertainty: how much "
@@ -295,5 +304,5 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
             f"so beta = 0 and a band above it never balance; above the least beta every beta up "
             f"to {float(beta.beta.max()):.3g} balances at a high enough speed (no upper end); "
             f"{fold_text}, so between those speeds the beta between the curve's two branches "
-            "do not balance"),
+            "do not balance", choices=BOUNDARY_CHOICES),
     ]

@@ -15,8 +15,10 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, Reproduced, merge_variants
+from rotorvib.comparison import Margin, merge_variants, Reproduced
 from rotorvib.io.coords import labels, pick
+from rotorvib.papers.b.choices import (BETA_GRID, FIG2_GRID, MASS_GRID, R_CHOICE, TIME_CHOICE,
+                                       ZETA_CHOICE, kinematics_choice)
 from rotorvib.papers.b.curves import (argmin, argmin_interval, as_longest, dip_depth,
                                       faster_share, largest_fall, mean_over_ics, rise,
                                       rise_text, roughness, seconds_text, share_balanced_by,
@@ -61,7 +63,9 @@ def basin_rows(basin: xr.Dataset, kin: str, typical) -> list[Reproduced]:
                           f"one cell of the basin grid ({cells} positions)"),
                    "share of initial ball positions (uniform grid of the basin map) balancing "
                    "no later than each IC; typical means within "
-                   f"{lo:.0%}-{hi:.0%}: " + "; ".join(parts))]
+                   f"{lo:.0%}-{hi:.0%}: " + "; ".join(parts),
+                   choices=(R_CHOICE, "paper_b.claims.ics_typical_share (chosen)",
+                            "paper_b.basin (its grid, cases and eps_bar, chosen)"))]
 
 
 def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
@@ -109,7 +113,8 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                        Margin(inside, step, "beta", "one step of the beta grid of Figs 8-10"),
                        "the fastest beta per eps_bar and IC is "
                        + ", ".join(f"{v:.2f} ({e:g}, {ic})" for (e, ic), v in best_betas.items())
-                       + f" against the band [{band[0]:g}, {band[1]:g}]; {edges}"))
+                       + f" against the band [{band[0]:g}, {band[1]:g}]; {edges}",
+                       choices=(R_CHOICE, BETA_GRID)))
     curves = {str(ic): [b.balance_time.isel(eps_bar=i, ic=j).values
                         for i in range(b.eps_bar.size)] for j, ic in enumerate(b.ic_name.values)}
     ic12 = curves["IC1"] + curves["IC2"]
@@ -118,13 +123,15 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                        + "; ".join(f"{ic} " + ", ".join(rise_text(rise(c)) for c in curves[ic])
                                    for ic in ("IC1", "IC2"))
                        + "; the largest fall between balanced neighbours is "
-                         f"{max(map(largest_fall, ic12)):.3g} s"))
+                         f"{max(map(largest_fall, ic12)):.3g} s",
+                       choices=(R_CHOICE, BETA_GRID, TIME_CHOICE)))
     dips = [dip_depth(b.balance_time.isel(eps_bar=i, ic=2).values) for i in range(b.eps_bar.size)]
     rows.append(_claim("figs8_10_ic3_dip", timed(min(dips), time_uncertainty),
                        "IC3's lowest balance time lies below both ends of the beta range by "
                        + ", ".join(f"{d:.3g} s (eps_bar = {e:g})"
                                    for d, e in zip(dips, b.eps_bar.values))
-                       + " (<= 0: the lowest point is an end)"))
+                       + " (<= 0: the lowest point is an end)",
+                       choices=(R_CHOICE, BETA_GRID, TIME_CHOICE)))
     mass_curves = [m.balance_time.isel(eps_bar=i, ic=j).values
                    for i in range(m.eps_bar.size) for j in range(m.ic.size)]
     rows.append(_claim("figs12_14_grow_with_mass",
@@ -132,7 +139,8 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                        f"{GROWS.format('mass')} per curve: "
                        + ", ".join(rise_text(rise(c)) for c in mass_curves)
                        + "; the largest fall between balanced neighbours is "
-                         f"{max(map(largest_fall, mass_curves)):.3g} s"))
+                         f"{max(map(largest_fall, mass_curves)):.3g} s",
+                       choices=(R_CHOICE, MASS_GRID, TIME_CHOICE)))
     spread = {}
     for name, grid in (("beta", b), ("mass", m)):
         curves = mean_over_ics(grid.balance_time).values
@@ -147,7 +155,8 @@ def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
                        f"mean balance time (over the ICs) changes by {100 * spread['mass']:.0f} % "
                        f"across the mass range of Figs 12-14 and by {100 * spread['beta']:.0f} % "
                        "across the beta range of Figs 8-10 (mean over eps_bar); the comparison "
-                       "holds for these plotted ranges only"))
+                       "holds for these plotted ranges only",
+                       choices=(R_CHOICE, BETA_GRID, MASS_GRID, TIME_CHOICE)))
     last = mean_over_ics(m.balance_time.isel(eps_bar=-1)).values
     near = argmin_interval(last, m.mass.values)
     rows.append(_row("eq41_m_opt", argmin(last, m.mass.values),
@@ -199,7 +208,10 @@ def ga_rows(ga: xr.Dataset, kin: str, bounds: dict, band) -> list[Reproduced]:
                                       "of one on the other side of the band's edge"),
                                f"GA optimum beta = {beta:.3f} (m = {1e3 * m:.2f} g, {time_text}); "
                                f"over {betas.size} seeds {betas.min():.3f}-{betas.max():.3f}, "
-                               f"{outside} of them outside the band; {edges}"))
+                               f"{outside} of them outside the band; {edges}",
+                               choices=(R_CHOICE, ZETA_CHOICE,
+                                        "paper_b.ga.seed, spread_seeds (the seeds, chosen)",
+                                        "paper_b.ga.censored_penalty (chosen)")))
             at_bound = np.isclose(m, bounds["mass"][0], rtol=1e-3)
             rows.append(_row(f"ga_m_opt_{tag}", m,
                              f"GA optimum mass {'at the lower bound' if at_bound else 'inside the bounds'}"
@@ -252,7 +264,10 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
                      "peak forces "
                      + ", ".join(f"{r['force_max_N']:.1f} N" for r in t2) + "; decay times "
                      + ", ".join(seconds_text(r["force_decay_time_s"], "none by t_end")
-                                 for r in t2)))
+                                 for r in t2),
+                     choices=(R_CHOICE, ZETA_CHOICE, TIME_CHOICE,
+                              "the force decay threshold k r_threshold (the paper does not "
+                              "define its decay time)")))
     return rows
 
 
@@ -287,9 +302,12 @@ def response_rows(tr: xr.Dataset, kin: str, r_threshold: float,
                               "largest r over the last tenth of the run against the balance "
                               "threshold (a comparison of samples)"),
                      f"with beta = 0 r(t) ends "
-                     f"at {1e3 * float(f6.r[-1]):.3f} mm, never settling below the threshold"))
-    for prefix, quantity, label in (("fig11", "fig11_beta01_fastest", "beta"),
-                                    ("fig15", "fig15_m6_fastest", "m")):
+                     f"at {1e3 * float(f6.r[-1]):.3f} mm, never settling below the threshold",
+                     choices=(R_CHOICE, ZETA_CHOICE,
+                              "paper_b.time_responses.fig6 (chosen: Fig 7's case with beta = 0)",
+                              "the last tenth of the run, where r is read (chosen)")))
+    for prefix, quantity, chosen in (("fig11", "fig11_beta01_fastest", "ic"),
+                                     ("fig15", "fig15_m6_fastest", "masses")):
         runs = [n for n in names if n.startswith(prefix)]
         times = [float(run(n).balance_time) for n in runs]
         longest = as_longest(times)
@@ -298,7 +316,9 @@ def response_rows(tr: xr.Dataset, kin: str, r_threshold: float,
         rows.append(_claim(quantity, timed(lead, time_uncertainty),
                            "balance times "
                          + ", ".join(f"{n.split('_', 1)[1]} {seconds_text(v)}" for n, v in
-                                     zip(runs, times))))
+                                     zip(runs, times)),
+                           choices=(R_CHOICE, TIME_CHOICE, f"paper_b.time_responses.{prefix}."
+                                    f"{chosen} (chosen: the paper does not give it)")))
     return rows
 
 
@@ -349,7 +369,8 @@ def stability_rows(st2: xr.Dataset, st3: xr.Dataset) -> list[Reproduced]:
         _claim("fig2_above_critical", above2,
              f"every stable point lies above the critical speed "
              f"{float(st2.critical_speed[0]):.3f}; the lowest onset of stability, located "
-             f"exactly on each row, is {lowest2:.4f}{edge2}"),
+             f"exactly on each row, is {lowest2:.4f}{edge2}",
+               choices=(FIG2_GRID,)),
         _claim("fig2_beta_band",
                Margin(float(min(-stable_at_zero, unstable_above - 1)), 0.0, "grid points",
                       "counts of grid points (exact): stable ones at beta = 0, not stable "
@@ -358,13 +379,16 @@ def stability_rows(st2: xr.Dataset, st3: xr.Dataset) -> list[Reproduced]:
                f"{unstable_above} grid points are not stable (unstable or marginal), so "
                "balancing needs more than the speed: stable for " + (f"beta in [{band.min():.2f}, {band.max():.2f}] on the "
                                        f"grid (up to {st2.beta.values[-1]:g})"
-                                       if band.size else "no beta on the grid")),
+                                       if band.size else "no beta on the grid"),
+               choices=(FIG2_GRID, "paper_b.marginal_growth (chosen: round-off of the "
+                                   "eigenvalues)")),
         _claim("fig3_above_critical", above3,
              f"every stable point lies above its critical speed (lowest exact onset of "
              f"stability {lowest3:.4f}{edge3}); stable masses start at m_bar = "
              f"{stable_m.min() if stable_m.size else np.nan:.4f}, balanced states exist from "
              f"m_bar = {exists.min() if exists.size else np.nan:.4f} (bound 34: eps_bar/2 = "
-             f"{float(st3.fixed_eps_bar) / 2:.4f})"),
+             f"{float(st3.fixed_eps_bar) / 2:.4f})",
+               choices=("paper_b.stability_maps.fig3 (its m_bar and omega_bar ranges, chosen)",)),
     ]
 
 
@@ -378,7 +402,8 @@ def cost_rows(beta: xr.Dataset, mass: xr.Dataset, ga: xr.Dataset) -> list[Reprod
                    Margin(float(ga_runs - plots), 0.0, "runs", "counts of runs (exact)"),
                    f"the curves of Figs 8-10 and 12-14 take {plots} runs on the chosen grids, "
                    f"the nine GAs {ga_runs} ({ga_runs / plots:.1f}x); the plots optimise one "
-                   "parameter at a time with the other fixed, the GA both at once")]
+                   "parameter at a time with the other fixed, the GA both at once",
+                   choices=(BETA_GRID, MASS_GRID))]
 
 
 def reproduce(*, st2, st3, tr, beta, mass, ga, table1, forces, basin, R, ga_bounds, beta_band,
@@ -397,7 +422,7 @@ def reproduce(*, st2, st3, tr, beta, mass, ga, table1, forces, basin, R, ga_boun
             + grid_rows(beta, mass, kin, beta_band, u) + ga_rows(ga, kin, ga_bounds, beta_band)
             + basin_rows(basin, kin, typical)
             for kin in labels(beta, "kinematics")}
-    return merge_variants(rows) + stability_rows(st2, st3) + cost_rows(beta, mass, ga)
+    return merge_variants(rows, kinematics_choice(rows)) + stability_rows(st2, st3) + cost_rows(beta, mass, ga)
 
 
 def printed_values(ds: xr.Dataset, paper: dict) -> dict[str, float]:

@@ -313,4 +313,4 @@ def uncertainty(unc, paper):
 # look every paper B figure up here.
 balance_law, pareto = beyond_figures.balance_law, beyond_figures.pareto
 boundaries, ross_check = beyond_figures.boundaries, beyond_figures.ross_check
-ga_law = beyond_figures.ga_law
+ga_law, zeta_inversion = beyond_figures.ga_law, beyond_figures.zeta_inversion

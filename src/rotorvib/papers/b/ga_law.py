@@ -28,6 +28,7 @@ from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.coords import label_coord, pick
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.simulate import run
+from rotorvib.papers.b.choices import GA_LAW_CHOICES
 from rotorvib.papers.b.law import balance_time_law, slow_decay_rate
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 
@@ -183,7 +184,8 @@ def ga_law_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[
            & np.isfinite(amp) & np.isfinite(rate))
     if not use.any():
         return [Reproduced.claim("B", "law_explains_ga_optimum", None,
-                                 "undetermined: no neighbour of a GA optimum balances")]
+                                 "undetermined: no neighbour of a GA optimum balances",
+                                 choices=GA_LAW_CHOICES)]
     share = (np.abs(amp) / (np.abs(amp) + np.abs(rate)))[use]
     rng = np.random.default_rng(seed)
     spread = np.std([np.median(rng.choice(share, share.size)) for _ in range(resamples)])
@@ -217,4 +219,5 @@ def ga_law_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[
         f"{np.nanmedian(heavier):+.2f} s), and the GA's mass lies within 1 % of its box's least "
         f"({1e3 * float(ds.mass_min):g} g) at {int(np.sum(light))} of {problems}. "
         f"The peak-force law misses the optimum (median error {np.nanmedian(peak_err):+.2f} s "
-        f"there): the peak force of the passage is not the whirl it leaves")]
+        f"there): the peak force of the passage is not the whirl it leaves",
+        choices=GA_LAW_CHOICES)]

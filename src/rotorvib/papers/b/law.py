@@ -19,8 +19,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from rotorvib.choices import Close
+
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.methods.sensitivity import percentile_spread
+from rotorvib.papers.b.choices import LAW_CHOICES
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 from rotorvib.papers.b.stability_maps import balanced_eigenvalues
 
@@ -127,7 +130,7 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
     )
 
 
-def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
+def law_rows(ds: xr.Dataset, close: Close, *, resamples: int = 200,
              seed: int = 0) -> list[Reproduced]:
     """Beyond the paper: does the law predict the balance time of the median balanced run
     within the comparison's standard for "close"?  The margin is ``close`` less the median
@@ -139,7 +142,7 @@ def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
     if not valued.any():
         return [Reproduced.claim("B", "balance_law_close", None,
                                  "undetermined: no balanced run with a decaying mode to test "
-                                 "the law on")]
+                                 "the law on", choices=LAW_CHOICES + (close.choice,))]
     median = float(np.median(errors[valued]))
     spread = float(percentile_spread(errors[valued], [50.0], resamples=resamples, seed=seed)[0])
     worst = valued & (errors >= np.percentile(errors[valued], 99))
@@ -151,8 +154,9 @@ def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
         for s in dict.fromkeys(ds.source.values))
     return [Reproduced.claim(
         "B", "balance_law_close",
-        Margin(close - median, 2 * spread, "relative", f"bootstrap of the median over "
-                                                       f"{int(valued.sum())} runs"),
+        close.margins(lambda c: Margin(c - median, 2 * spread, "relative",
+                                       f"bootstrap of the median over {int(valued.sum())} "
+                                       "runs")),
         f"over {int(valued.sum())} balanced runs the law's error is {median:.1%} at the median "
         f"and within {np.percentile(errors[valued], 90):.1%} for 90 % ({by_source}). Its largest "
         f"errors come with little ball damping: the 1 % worst runs (errors from "
@@ -160,7 +164,7 @@ def law_rows(ds: xr.Dataset, close: float, *, resamples: int = 200,
         f"{np.median(beta[valued]):g} for all runs; the existence bound m_bar/eps_bar = 1/2 does "
         f"not single them out ({on_bound[worst].mean():.0%} of them on it, "
         f"{on_bound[valued].mean():.0%} of all runs). Close means within {close:.0%}, the "
-        "comparison's standard")]
+        "comparison's standard", choices=LAW_CHOICES + (close.choice,))]
 
 
 FACTORS = ("sigma", "force", "t_peak")
@@ -228,7 +232,7 @@ def trend_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[R
             "B", quantity, holds or None,       # no run balanced: nothing to decide
             "shares of the balance times' variance that each factor of the law explains alone "
             "(sigma: the slowest decay rate; force: the passage's peak force; t_peak: its time; "
-            "law: all three): " + "; ".join(shares_text)))
+            "law: all three): " + "; ".join(shares_text), choices=LAW_CHOICES))
     return rows
 
 
@@ -260,7 +264,8 @@ def support_damping_rows(ds: xr.Dataset, zeta: float, *, neutral: float) -> list
     valid = np.all([np.isfinite(v) for v in e.values()], axis=0)
     if not valid.any():
         return [Reproduced.claim("B", "law_support_damping", None,
-                                 "undetermined: no parameter point with a decay rate")]
+                                 "undetermined: no parameter point with a decay rate",
+                                 choices=LAW_CHOICES)]
     lead = np.abs(e["zeta"]) - np.maximum(np.abs(e["beta"]), np.abs(e["m_bar"]))
     med = {k: float(np.median(v[valid])) for k, v in e.items()}
     return [Reproduced.claim(
@@ -274,4 +279,4 @@ def support_damping_rows(ds: xr.Dataset, zeta: float, *, neutral: float) -> list
         f"fast the whirl decays once the balls have settled, and the ball damping hardly does "
         f"(tenfold beta moves sigma by a factor {10 ** abs(med['beta']):.2f} at the median): "
         "beta's effect on the balance time comes mostly through the passage (row "
-        "law_explains_beta)")]
+        "law_explains_beta)", choices=LAW_CHOICES)]

@@ -8,14 +8,16 @@ source or a reason:
   printed ones (within the comparison's MATCH tolerance) -- the band the calibration allows
   (:func:`calibrated_band`); where no R does (another machine or initial condition than the
   paper's), the calibration's whole grid, and the dataset and its rows say so;
+- the support damping ratio zeta, which the paper states for Figs 2-3 and 8-14 but not for
+  Fig 7 or Tables 1-2: a stated prior range (config), never fitted to the printed times (which
+  the bands are set against);
 - the initial amplitude r(0), and relative offsets (tolerances) of the eccentricity, the ball
   mass and the support stiffness (config, with reasons).  The eccentricity stays at or below
   the design's eps_max, which eq. (41) sizes the balls for; an eccentricity beyond it is the
   separate overload question (:func:`balances_in_closed_form`).
 
-What the paper states for every run -- the support damping zeta, the balls' initial positions
-(eq. 39) -- is not varied: a distribution over random ball positions is another quantity (the
-basin study).  For each case (Table 2's optimum row, Fig 7, Table 1's mean over the ICs),
+What the paper states for every run -- the balls' initial positions (eq. 39) -- is not varied:
+a distribution over random ball positions is another quantity (the basin study).  For each case (Table 2's optimum row, Fig 7, Table 1's mean over the ICs),
 Sobol indices say which input drives each quantity, and its 5-95 % band says whether a printed
 value lies within input uncertainty of its reproduction.  A run that never balances has no
 time: the bands of times are over the runs that balance, and ``balanced`` gives their share.
@@ -37,7 +39,7 @@ from rotorvib.methods.sensitivity import band_statement, problem, sample, study_
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import LazyInputs, Setup, dataset_attrs
 
-INPUTS = ("R", "r0", "eps_tolerance", "mass_tolerance", "k_tolerance")
+INPUTS = ("R", "zeta", "r0", "eps_tolerance", "mass_tolerance", "k_tolerance")
 #: quantity -> units; a time is NaN for a run without one, ``balanced`` is 1 for a run that
 #: balances
 QUANTITIES = {"force_max": "N", "force_decay_time": "s", "balance_time": "s",
@@ -111,9 +113,10 @@ def balances_in_closed_form(ds: xr.Dataset, x, *, mass_tolerance=None, eps_offse
         v = dict(zip([str(n) for n in ds.input_name.values], np.asarray(x, float).T))
         dm, de, R = v["mass_tolerance"], v["eps_tolerance"], v["R"]
         k = a["support_k"] * (1 + v["k_tolerance"])
+    zeta = a["support_zeta"] if eps_offsets is not None else v["zeta"]
     r = residual_whirl(M=a["disk_mass"], n=a["balls"], mass=a["design_mass"] * (1 + dm),
                        eps_bar=a["nominal_eps_bar"] * (1 + de), R=R, k=k,
-                       zeta=a["support_zeta"], speed=a["speed"])
+                       zeta=zeta, speed=a["speed"])
     return r < a["r_threshold"]
 
 
@@ -134,7 +137,7 @@ def run_case(setup: Setup, x, case: dict, *, kinematics: str,
         ``i % len(positions)``."""
         row, phi = divmod(i, len(positions))
         v = dict(zip(INPUTS, rows[row]))
-        s = replace(setup, k=setup.k * (1 + v["k_tolerance"]), r0=v["r0"])
+        s = replace(setup, k=setup.k * (1 + v["k_tolerance"]), r0=v["r0"], zeta=v["zeta"])
         return s.run_inputs(mass=case["mass"] * (1 + v["mass_tolerance"]),
                             eps_bar=case["eps_bar"] * (1 + v["eps_tolerance"]),
                             beta=case["beta"], phi0_deg=tuple(positions[phi]),
@@ -169,7 +172,7 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinem
                                               for name in INPUTS[1:]}})
     x = sample(spec, n_base, seed)
     run = partial(run_case, setup, case=case, kinematics=kinematics, runs=runs)
-    at = {"R": setup.R, "r0": setup.r0}
+    at = {"R": setup.R, "zeta": setup.zeta, "r0": setup.r0}
     nominal = {q: v[0] for q, v in run([[at.get(n, 0.0) for n in INPUTS]]).items()}
     ds = study_dataset(spec, x, run(x), nominal, QUANTITIES, n_bases=convergence,
                        resamples=resamples, seed=seed)
@@ -194,6 +197,12 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinem
                            overload=float(ranges["overload"]), R_range=R_how, **attrs)
 
 
+#: What the rows of the uncertainty study rest on.
+_CHOICES = ("paper_b.uncertainty.ranges (the inputs' ranges, chosen, zeta's a stated prior; "
+            "R's range from the calibration of rule b_forces)",
+            "paper_b.uncertainty.n_base (the sample, chosen from its convergence)")
+
+
 def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reproduced]:
     """One row per ``quantity -> paper key`` of ``printed``: is the paper's value within the
     band of its reproduction?  Where R's range is not the calibrated band, the row says so;
@@ -207,7 +216,7 @@ def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reprodu
         margin, text = band_statement(ds, quantity, paper[key])
         used = calibrated and fitted.fullmatch(key)
         rows.append(_claim(f"{key}_within_uncertainty", within_band(ds, quantity, margin),
-                           f"printed {text}{caveat}",
+                           f"printed {text}{caveat}", choices=_CHOICES,
                            calibrated=(f"R's range is {CALIBRATED}, {key} among them"
                                        if used else "")))
     return rows
@@ -239,7 +248,8 @@ def balances_row(ds: xr.Dataset) -> Reproduced:
                   f"predicts {int(np.sum(predicted == balanced))} of the {balanced.size} "
                   f"outcomes. Overload, a separate question: with the eccentricity up to "
                   f"{ds.attrs['overload']:.0%} beyond eps_max and the ball mass within "
-                  f"{masses[0]:+.0%} to {masses[1]:+.0%}, it predicts {overload:.1%} balance")
+                  f"{masses[0]:+.0%} to {masses[1]:+.0%}, it predicts {overload:.1%} balance",
+                  choices=_CHOICES)
 
 
 def uncertainty_rows(studies: dict[str, xr.Dataset], paper: dict) -> list[Reproduced]:
@@ -259,5 +269,5 @@ def untested_rows(paper: dict, made: set[str]) -> list[Reproduced]:
     ``made``, saying why."""
     return [_claim(key, None, "not tested under this configuration: no case of the "
                    "uncertainty study runs under the paper's conditions for this value "
-                   "(e.g. Table 2's speed differs from the paper's)")
+                   "(e.g. Table 2's speed differs from the paper's)", choices=_CHOICES)
             for key in paper if key.endswith("_within_uncertainty") and key not in made]

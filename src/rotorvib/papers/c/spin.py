@@ -8,17 +8,25 @@ eq. (9), linearised, softens each absorber set's springs from ``2 k`` to ``2 k -
 
     omega_a(Omega) = sqrt(omega_a^2 - Omega^2),
 
-and loses its spring (the set drifts outwards) at ``Omega = omega_a``.  :func:`spin_dataset`
-follows Table 2's absorber over the spin, :func:`spin_rows` says whether it stays tuned at a
-realistic speed.
+and loses its spring (the set drifts outwards) at ``Omega = omega_a``: the tuning falls by
+more than a relative ``c`` once ``Omega > sqrt(1 - (1 - c)^2) omega_a`` (:func:`detuning_limit`),
+whatever the machine.  The remedy is to tune at speed: springs ``k' = k + m Omega^2 / 2`` give
+``2 k' - m Omega^2 = 2 k``, the set's tuning at rest (:func:`retuned`).  :func:`spin_dataset`
+follows Table 2's absorber over the spin, softened and retuned; :func:`spin_rows` says whether
+it stays tuned at the speeds of machines it may run on.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import xarray as xr
 
+from rotorvib.choices import VARIANT_JOIN, Close
+
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.coords import label_coord, labels
 from rotorvib.models.absorber.frequency_response import amplitude
 from rotorvib.models.absorber.parameters import Rotor
 
@@ -33,15 +41,37 @@ def tuned_frequency(omega_a, spin):
     return np.sqrt(np.where(squared > 0, squared, np.nan))
 
 
-def spin_dataset(rotor: Rotor, table2, *, n: int, realistic: float, w) -> xr.Dataset:
+def detuning_limit(close: float) -> float:
+    """The spin, as a fraction of a set's ``omega_a``, above which its tuning
+    ``sqrt(omega_a^2 - Omega^2)`` is more than ``close`` (relative) below ``omega_a``:
+    ``sqrt(1 - (1 - close)^2)``."""
+    return float(np.sqrt(1.0 - (1.0 - close) ** 2))
+
+
+def retuned(sets, spin: float):
+    """The sets with springs ``k + m Omega^2 / 2``: tuned at ``spin`` as they were at rest."""
+    return tuple(replace(s, k=s.k + s.m * spin**2 / 2) for s in sets)
+
+
+def spin_dataset(rotor: Rotor, table2, *, n: int, realistic: float, w,
+                 alternatives=()) -> xr.Dataset:
     """Table 2's absorber over ``n`` spins from rest to just below the first spring loss (99 %
     of the smallest ``omega_a``): each set's tuning ``omega_a(Omega) / omega_n`` and D at the
-    rotor's resonance (w = 1); and the frequency response over ``w`` at rest and at the
-    ``realistic`` spin (rad/s)."""
+    rotor's resonance (w = 1), as built and tuned at each spin (:func:`retuned`); the
+    frequency response over ``w`` at rest and at the ``realistic`` spin (rad/s); and the
+    machine speeds the claim is evaluated at, ``realistic`` and the ``alternatives`` (rad/s,
+    each below the spring loss)."""
     loss = min(s.omega_a for s in table2)
     spins = np.linspace(0.0, 0.99 * loss, n)
+    machines = np.array([realistic, *alternatives], float)
+    if machines.max() > spins[-1]:
+        raise ValueError(f"paper_c.spin: a machine speed of {machines.max() * 30 / np.pi:g} rpm "
+                         f"is beyond the spins followed, up to {spins[-1] * 30 / np.pi:g} rpm "
+                         "(99 % of the first spring loss)")
     tuning = np.stack([tuned_frequency(s.omega_a, spins) / rotor.omega_n for s in table2])
     at_resonance = np.array([float(amplitude(rotor, table2, 1.0, spin)) for spin in spins])
+    at_resonance_retuned = np.array([float(amplitude(rotor, retuned(table2, spin), 1.0, spin))
+                                     for spin in spins])
     responses = np.stack([amplitude(rotor, table2, w, spin) for spin in (0.0, realistic)])
     one = {"units": "1"}
     return xr.Dataset(
@@ -51,6 +81,9 @@ def spin_dataset(rotor: Rotor, table2, *, n: int, realistic: float, w) -> xr.Dat
          "D_resonance": ("spin", at_resonance, {
              "long_name": "dimensionless torsional amplitude D at w = 1 with Table 2's absorber",
              **one}),
+         "D_resonance_retuned": ("spin", at_resonance_retuned, {
+             "long_name": "D at w = 1 with Table 2's absorber tuned at the spin, springs "
+                          "k + m Omega^2 / 2", **one}),
          "D": (("case", "w"), responses, {
              "long_name": "dimensionless torsional amplitude D with Table 2's absorber", **one}),
          "spring_loss": ("set", [s.omega_a for s in table2], {
@@ -58,10 +91,16 @@ def spin_dataset(rotor: Rotor, table2, *, n: int, realistic: float, w) -> xr.Dat
              "units": "rad s-1"}),
          "realistic_spin": ((), realistic, {"long_name": "spin of a realistic machine",
                                             "units": "rad s-1"}),
+         "machine_spin": ("machine", machines, {"long_name": "speeds of the machines the claim "
+                                                             "is evaluated at",
+                                                "units": "rad s-1"}),
          "omega_n": ((), rotor.omega_n, {"long_name": "natural frequency of the rotor without "
                                                   "absorber", "units": "rad s-1"})},
         coords={"spin": ("spin", spins, {"long_name": "mean spin of the rotor Omega",
                                          "units": "rad s-1"}),
+                **label_coord("machine", ["paper_c.spin.realistic_rpm"]
+                              + ["paper_c.spin.alternative_rpm"] * len(alternatives),
+                              "the configuration key of each machine speed"),
                 "set": ("set", np.arange(1, len(table2) + 1, dtype=np.int32),
                         {"long_name": "absorber set", "units": "1"}),
                 "case_name": ("case", np.array(["at rest", "realistic spin"], dtype=object),
@@ -76,21 +115,40 @@ def spin_dataset(rotor: Rotor, table2, *, n: int, realistic: float, w) -> xr.Dat
     )
 
 
-def spin_rows(ds: xr.Dataset, close: float) -> list[Reproduced]:
+def spin_rows(ds: xr.Dataset, close: Close) -> list[Reproduced]:
     """Beyond the paper: does Table 2's absorber, tuned at rest, stay tuned within the
-    comparison's standard for close at the realistic spin?  Closed form, no uncertainty."""
-    realistic, wn = float(ds.realistic_spin), float(ds.omega_n)
-    rest = ds.spring_loss.values / wn
-    at_speed = tuned_frequency(ds.spring_loss.values, realistic) / wn
-    detuning = float(np.max(np.abs(at_speed - rest) / rest))
-    d0 = float(ds.D.values[0][np.argmin(np.abs(ds.w.values - 1))])
-    d1 = float(np.interp(realistic, ds.spin.values, ds.D_resonance.values))
+    comparison's standard for close at the speeds of the machines it may run on (the paper
+    gives none: each is evaluated, and the row depends on the speed where they differ)?  The
+    text gives the speed-free result (:func:`detuning_limit`) and the remedy's amplitude.
+    Closed form, no uncertainty."""
+    wn, omega_a = float(ds.omega_n), ds.spring_loss.values
+    d_rest = float(ds.D_resonance.values[0])
+
+    def detuning(spin):          # a lost spring (NaN) is detuned entirely
+        return float(np.max(np.nan_to_num(1 - tuned_frequency(omega_a, spin) / omega_a,
+                                          nan=1.0)))
+
+    holds, said = {}, []
+    for key, spin in zip(labels(ds, "machine"), ds.machine_spin.values):
+        choice = f"{key} = {spin * 30 / np.pi:g} rpm"
+        for name, margin in close.margins(
+                lambda c: Margin(c - detuning(spin), 0.0, "relative",
+                                 "closed form sqrt(omega_a^2 - Omega^2)")).items():
+            holds[f"{choice}{VARIANT_JOIN}{name}"] = margin
+        soft = float(np.interp(spin, ds.spin.values, ds.D_resonance.values))
+        tuned = float(np.interp(spin, ds.spin.values, ds.D_resonance_retuned.values))
+        said.append(f"{choice}: {detuning(spin):.0%} off, D at resonance {soft:.3g} "
+                    f"(tuned at speed {tuned:.3g})")
+    limits = ", ".join(f"{detuning_limit(c):.3g} omega_a for {c:g}"
+                       for c in (close.value, *close.alternatives))
     return [Reproduced.claim(
-        "C", "spin_keeps_tuning",
-        Margin(close - detuning, 0.0, "relative", "closed form sqrt(omega_a^2 - Omega^2)"),
-        f"at Omega = {realistic:.4g} rad/s ({realistic * 30 / np.pi:.0f} rpm) the sets' tuning "
-        "moves from " + ", ".join(f"{a:.3f}" for a in rest) + " to "
-        + ", ".join(f"{b:.3f}" for b in at_speed) + f" omega_n ({detuning:.0%} off); D at "
-        f"resonance rises from {d0:.3g} to {d1:.3g}; the springs are lost at "
-        + ", ".join(f"{v:.4g}" for v in ds.spring_loss.values) + " rad/s. Close means within "
-        f"{close:.0%}, the comparison's standard")]
+        "C", "spin_keeps_tuning", holds,
+        f"whatever the machine, a set's tuning sqrt(omega_a^2 - Omega^2) falls more than a "
+        f"relative c below omega_a once Omega exceeds sqrt(1 - (1 - c)^2) omega_a: {limits} "
+        f"(Table 2's sets: omega_a = " + ", ".join(f"{v:.4g}" for v in omega_a)
+        + " rad/s = " + ", ".join(f"{v / wn:.3f}" for v in omega_a) + " omega_n). At rest D "
+        f"at resonance is {d_rest:.3g}; " + "; ".join(said) + ". The remedy, springs "
+        "k + m Omega^2 / 2 (tuned at speed), restores the tuning at rest exactly; the springs "
+        "are lost at Omega = omega_a",
+        choices=("paper_c.spin.realistic_rpm, alternative_rpm (machine speeds, assumed: the "
+                 "paper gives none)", close.choice))]

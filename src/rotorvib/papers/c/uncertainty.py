@@ -46,4 +46,7 @@ def uncertainty_rows(ds: xr.Dataset, paper: dict) -> list[Reproduced]:
     reproduction?"""
     margin, text = band_statement(ds, "theta", paper["theta_table2"])
     return [Reproduced.claim("C", "theta_table2_within_uncertainty", within_band(ds, "theta", margin),
-                             f"printed {text}")]
+                             f"printed {text}",
+                             choices=("paper_c.uncertainty.tolerance (the manufacturing "
+                                      "tolerance of each Table 2 value, chosen)",
+                                      "paper_c.uncertainty.n_base (the sample, chosen)"))]
