@@ -218,8 +218,8 @@ def comparison_table(ds: xr.Dataset) -> list[dict]:
 #: What the broadband rows rest on: the band, the GA's bounds (Table 2's, the paper's) and seeds.
 CHOICES = ("paper_c.broadband.band (the frequency range the peak is taken over, chosen)",
            "paper_c.broadband.den_hartog_d (the single absorber's radius, chosen)",
-           "paper_c.ga bounds (the paper's, section 4: k >= its lower bound)",
-           "paper_c.broadband.ga seeds (chosen)")
+           "paper_c.bounds (the paper's, section 4: k >= its lower bound)",
+           "paper_c.broadband.nsga.seed, spread_seeds (chosen)")
 
 
 def broadband_rows(ds: xr.Dataset) -> list[Reproduced]:
