@@ -83,6 +83,12 @@ def test_resonances_are_reported():
         exact.two_term(np.ones(3), np.array([0.0]))
     near = MultipleScales.at(np.diag([-1.0, -2.5, -3.52]), T)        # -1 - 2.5 ~ -3.52
     assert [(r.j, r.k, r.l) for r in near.resonances(tolerance=0.01)] == [(0, 1, 2)]
+    # the nearest resonance of two and of three exponents, relative to max|lambda|
+    assert exact.resonance_distance(2) == 0.0
+    assert near.resonance_distance(2) == pytest.approx(0.02 / 3.52, rel=1e-12)
+    apart = MultipleScales.at(np.diag([-1.0, -1.7, -10.0]), T)
+    assert apart.resonance_distance(2) == pytest.approx(0.3 / 10.0, rel=1e-12)  # 2 x -1, -1.7
+    assert apart.resonance_distance(3) == pytest.approx(1.3 / 10.0, rel=1e-12)  # 3 x -1, -1.7
 
 
 @pytest.fixture(scope="module")

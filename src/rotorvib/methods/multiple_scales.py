@@ -23,6 +23,7 @@ tensor ``T`` with ``H(u, v)_i = sum_jk T_ijk u_j v_k``.  A near-resonance
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import combinations_with_replacement
 
 import numpy as np
 from scipy.optimize import root
@@ -88,6 +89,15 @@ class MultipleScales:
                 if gaps[l] < tolerance:
                     found.append(Resonance(j, k, l, float(gaps[l])))
         return found
+
+    def resonance_distance(self, terms: int) -> float:
+        """The least ``|lambda_j + ... + lambda_m - lambda_l| / max|lambda|`` over every sum of
+        ``terms`` exponents (repeats allowed): the distance to the nearest resonance of order
+        ``terms``. The amplitudes are free of ``T1`` where no two exponents resonate (the
+        solvability condition at order eps^2) and of ``T2`` where no three do (order eps^3)."""
+        lam = self.eigenvalues
+        sums = np.array([sum(c) for c in combinations_with_replacement(lam, int(terms))])
+        return float(np.min(np.abs(sums[:, None] - lam[None, :])) / np.max(np.abs(lam)))
 
     def initial_state(self, x0) -> np.ndarray:
         """``x0`` checked: finite, one entry per state variable."""

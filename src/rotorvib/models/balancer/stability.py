@@ -175,16 +175,23 @@ def _coefficient_function():
                            modules=(sys.modules[__name__],))
 
 
+def characteristic_coefficients(mu, rho, zeta, beta, omega) -> np.ndarray:
+    """The coefficients of ``det(lambda^2 M + lambda C + K)``, highest power first, shape
+    ``(..., 9)`` (the groups' domain is that of :func:`groups`)."""
+    values = groups(mu, rho, zeta, beta, omega)
+    shape = values[0].shape
+    return np.stack([np.broadcast_to(np.asarray(c, dtype=float), shape)
+                     for c in _coefficient_function()(*values)], axis=-1)
+
+
 def polynomial_roots(mu, rho, zeta, beta, omega) -> np.ndarray:
     """The eight roots of ``det(lambda^2 M + lambda C + K) = 0`` (the multiple-scales
     eigenvalue problem of the 4x4 lambda-matrix, paper A eqs 23-33), through the symbolic
     characteristic polynomial and stacked companion matrices: a code path separate from
     :func:`eigenvalues` (Lyapunov's 8x8 Jacobian); the groups' domain is that of
     :func:`groups`."""
-    values = groups(mu, rho, zeta, beta, omega)
-    shape = values[0].shape
-    coeffs = np.stack([np.broadcast_to(np.asarray(c, dtype=float), shape)
-                       for c in _coefficient_function()(*values)], axis=-1)
+    coeffs = characteristic_coefficients(mu, rho, zeta, beta, omega)
+    shape = coeffs.shape[:-1]
     monic = coeffs[..., 1:] / coeffs[..., :1]
     companion = np.zeros(shape + (8, 8))
     companion[..., 0, :] = -monic

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from rotorvib.methods import routh
 from rotorvib.methods.multiple_scales import MultipleScales
 from rotorvib.models.balancer import engine, stability
 from rotorvib.models.balancer.expansion import balanced_state, taylor_at
@@ -49,6 +50,10 @@ def solutions(mu, rho, zeta, beta, omega, x0, tau, rk):
     return out, ms
 
 
+#: Resonances checked: sums of two exponents (secular in T1) and of three (in T2).
+RESONANCE_ORDERS = (2, 3)
+
+
 def responses_dataset(case: dict, offset: dict, betas, tau_end, tau_step, rk) -> xr.Dataset:
     """Figs 2-6: u, v and the ball angles by the three methods for each beta."""
     tau = np.arange(int(round(tau_end / tau_step)) + 1) * tau_step
@@ -56,11 +61,13 @@ def responses_dataset(case: dict, offset: dict, betas, tau_end, tau_step, rk) ->
     z = balanced_state(case["rho"])
     data = np.empty((len(betas), 3, len(tau), 4))
     eig = np.empty((len(betas), 8), dtype=complex)
+    nearest = np.empty((len(betas), len(RESONANCE_ORDERS)))
     resonance_text = []
     for i, beta in enumerate(betas):
         sol, ms = solutions(case["mu"], case["rho"], case["zeta"], beta, case["omega"], x0, tau, rk)
         data[i] = sol[..., :4] + z[:4]
         eig[i] = ms.eigenvalues
+        nearest[i] = [ms.resonance_distance(terms) for terms in RESONANCE_ORDERS]
         near = ms.resonances()
         resonance_text.append(f"beta={beta:g}: " + ("; ".join(
             f"l{r.j}+l{r.k}~l{r.l} ({r.distance:.3f})" for r in near) or "none"))
@@ -73,6 +80,10 @@ def responses_dataset(case: dict, offset: dict, betas, tau_end, tau_step, rk) ->
     variables["eigenvalue_imag"] = (("beta", "mode"), eig.imag,
                                     {"long_name": "imaginary part of the eigenvalues of J",
                                      "units": "1"})
+    variables["resonance_distance"] = (("beta", "order"), nearest, {
+        "long_name": "least |sum of 'order' exponents - an exponent| / max|lambda|: the distance "
+                     "to the nearest resonance that would make the amplitudes depend on T1 "
+                     "(order 2) or T2 (order 3)", "units": "1"})
     variables["balanced_angle"] = ((), np.degrees(z[2]),
                                    {"long_name": "balanced ball angle arccos(-1/(2 rho))",
                                     "units": "degree"})
@@ -80,6 +91,8 @@ def responses_dataset(case: dict, offset: dict, betas, tau_end, tau_step, rk) ->
         variables,
         coords={"beta": ("beta", np.asarray(betas, float), {"long_name": "ball damping ratio",
                                                             "units": "1"}),
+                "order": ("order", np.array(RESONANCE_ORDERS, dtype=np.int32),
+                          {"long_name": "number of exponents summed", "units": "1"}),
                 "method_name": ("method", np.array(METHODS, dtype=object),
                                 {"long_name": "solution method"}),
                 "tau": ("tau", tau, {"long_name": "dimensionless time w_n t", "units": "1"})},
@@ -96,6 +109,7 @@ def stability_region_dataset(mu, rho, zetas, betas, omegas) -> xr.Dataset:
                           np.asarray(omegas, float), indexing="ij")
     mms = stability.polynomial_roots(mu, rho, Z, B, W).real.max(axis=-1)
     lyap = stability.max_real_part(mu, rho, Z, B, W)
+    by_routh = routh.stable(stability.characteristic_coefficients(mu, rho, Z, B, W))
     dims = ("zeta", "beta", "omega")
     crit = {name: _critical_speed(g < 0, omegas) for name, g in (("mms", mms), ("lyapunov", lyap))}
     return xr.Dataset(
@@ -108,7 +122,12 @@ def stability_region_dataset(mu, rho, zetas, betas, omegas) -> xr.Dataset:
                                  "units": "1"}),
          "critical_speed_lyapunov": (dims[:2], crit["lyapunov"],
                                      {"long_name": "lowest speed of the stable range, Lyapunov",
-                                      "units": "1"})},
+                                      "units": "1"}),
+         "stable_routh": (dims, by_routh.astype(np.int8),
+                          {"long_name": "1 where Routh's criterion on the characteristic "
+                                        "polynomial finds every root in the left half-plane",
+                           "units": "1", "flag_values": np.int8([0, 1]),
+                           "flag_meanings": "not_stable stable"})},
         coords={"zeta": ("zeta", np.asarray(zetas, float), {"long_name": "support damping ratio",
                                                             "units": "1"}),
                 "beta": ("beta", np.asarray(betas, float), {"long_name": "ball damping ratio",
