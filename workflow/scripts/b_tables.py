@@ -6,7 +6,7 @@ from pathlib import Path
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
-from rotorvib.papers.b.claims import table1_rows, table2_rows
+from rotorvib.papers.b.row_values import table1_rows, table2_rows
 from rotorvib.papers.b.kinematics_note import kinematics_note
 
 job.start(snakemake.log[0])

@@ -24,10 +24,12 @@ from rotorvib.papers.b.curves import (argmin, argmin_interval, as_longest, dip_d
                                       rise_text, roughness, seconds_text, share_balanced_by,
                                       timed, within, within_studied)
 from rotorvib.papers.b.row_values import (optimum_lead, reduction, runup_end,
-                                         table1_at_paper_speeds)
+                                         table1_at_paper_speeds, table1_rows, table2_rows)
 
 PAPER = "B"
 _row = partial(Reproduced.of, PAPER)
+#: A number of a run whose support damping the paper does not state (Fig 7, Tables 1-2).
+_run_row = partial(_row, choices=(R_CHOICE, ZETA_CHOICE))
 _claim = partial(Reproduced.claim, PAPER)
 
 
@@ -66,33 +68,6 @@ def basin_rows(basin: xr.Dataset, kin: str, typical) -> list[Reproduced]:
                    f"{lo:.0%}-{hi:.0%}: " + "; ".join(parts),
                    choices=(R_CHOICE, "paper_b.claims.ics_typical_share (chosen)",
                             "paper_b.basin (its grid, cases and eps_bar, chosen)"))]
-
-
-def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
-    """Optimum mass (minimum mean balance time over the ICs) and that mean, per speed."""
-    t = pick(t1, kinematics=kinematics)
-    mean, envelope = mean_over_ics(t.balance_time), mean_over_ics(t.envelope_time)
-    rows = []
-    for i, speed in enumerate(t1.speed.values):
-        curve = mean.isel(speed=i).values
-        best = int(np.nanargmin(curve)) if np.isfinite(curve).any() else None
-        rows.append({"speed_rad_s": float(speed),   # NaN where every mass has a censored run
-                     "m_opt_kg": np.nan if best is None else float(t1.mass.values[best]),
-                     "mean_balance_time_s": np.nan if best is None else float(curve[best]),
-                     "mean_envelope_time_s": np.nan if best is None
-                     else float(envelope.values[i, best]),
-                     "censored_masses": int(np.sum(~np.isfinite(curve)))})
-    return rows
-
-
-def table2_rows(forces: xr.Dataset, R: float, kinematics: str) -> list[dict]:
-    """Table 2 regenerated: per row, beta, m, the peak bearing force, its decay time and the
-    balance time at the race radius ``R`` (nearest calibration radius) under ``kinematics``."""
-    at = pick(forces, kinematics=kinematics).sel(R=R, method="nearest")
-    return [{"row": int(c), "beta": float(at.case_beta[i]), "m_kg": float(at.case_mass[i]),
-             "force_max_N": float(at.force_max[i]), "force_decay_time_s":
-             float(at.force_decay_time[i]), "balance_time_s": float(at.balance_time[i])}
-            for i, c in enumerate(at.case.values)]
 
 
 def grid_rows(beta: xr.Dataset, mass: xr.Dataset, kin: str, band,
@@ -230,17 +205,17 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
         s = int(round(r["speed_rad_s"]))
         note = (f"minimum over the mass grid of the mean threshold balance time of IC1-IC3 "
                 f"({r['censored_masses']} masses with a censored run excluded)")
-        rows.append(_row(f"table1_m_opt_{s}", r["m_opt_kg"], note))
-        rows.append(_row(f"table1_mean_time_{s}", r["mean_balance_time_s"],
+        rows.append(_run_row(f"table1_m_opt_{s}", r["m_opt_kg"], note))
+        rows.append(_run_row(f"table1_mean_time_{s}", r["mean_balance_time_s"],
                          note + f"; by the envelope through the peaks of r(t) the mean is "
                          f"{seconds_text(r['mean_envelope_time_s'])}"))
     rows = table1_at_paper_speeds(rows, paper)
     t2 = table2_rows(forces, R, kin)
     for r in t2:
-        rows.append(_row(f"table2_fmax_{r['row']}", r["force_max_N"],
+        rows.append(_run_row(f"table2_fmax_{r['row']}", r["force_max_N"],
                          f"peak of F = k r + c r' sampled every ms, R = {R} m (inferred), IC1, "
                          f"{kin} kinematics"))
-        rows.append(_row(f"table2_decay_{r['row']}", r["force_decay_time_s"],
+        rows.append(_run_row(f"table2_decay_{r['row']}", r["force_decay_time_s"],
                          f"time after which F stays below k x r_threshold (the force of the balance "
                          f"criterion; the paper does not define its decay time); threshold "
                          f"balance time {seconds_text(r['balance_time_s'])}"))
@@ -248,11 +223,11 @@ def table_rows(t1: xr.Dataset, forces: xr.Dataset, R: float, kin: str, paper: di
     t_red = reduction(t2[-1]["force_decay_time_s"], t2[0]["force_decay_time_s"])
     printed_f = 100 * (1 - paper["table2_fmax_3"] / paper["table2_fmax_1"])
     printed_t = 100 * (1 - paper["table2_decay_3"] / paper["table2_decay_1"])
-    rows.append(_row("table2_reduction_force", f_red,
+    rows.append(_run_row("table2_reduction_force", f_red,
                      f"peak force of the optimum row against row 1; the paper's own Table 2 gives "
                      f"{printed_f:.0f} % for the force and {printed_t:.0f} % for the decay time, "
                      "so its text swaps the two percentages", implied=printed_f))
-    rows.append(_row("table2_reduction_time", t_red,
+    rows.append(_run_row("table2_reduction_time", t_red,
                      f"decay time of the optimum row against row 1 (see table2_reduction_force); "
                      f"reproduced force reduction {f_red:.0f} %", implied=printed_t))
     lead, decay_last = optimum_lead([r["force_max_N"] for r in t2],
@@ -286,7 +261,7 @@ def response_rows(tr: xr.Dataset, kin: str, r_threshold: float,
         return _run_of(t, name)
 
     f7 = run("fig7")
-    rows = [_row("fig7_balance_time", float(f7.envelope_time),
+    rows = [_run_row("fig7_balance_time", float(f7.envelope_time),
                  f"envelope through the peaks of r(t) crosses the threshold at "
                  f"{float(f7.envelope_time):.2f} s (threshold definition "
                  f"{float(f7.balance_time):.2f} s); the paper does not describe its envelope "

@@ -7,7 +7,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import pick
-from rotorvib.papers.b.claims import table1_rows, table2_rows
+from rotorvib.papers.b.row_values import table1_rows, table2_rows
 from rotorvib.papers.b.curves import argmin, mean_over_ics
 
 

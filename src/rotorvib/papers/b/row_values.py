@@ -1,7 +1,8 @@
-"""The numbers paper B's rows are made of where a configuration leaves some without a value:
-a decay that never comes, a reduction from nothing, a run-up shorter than a sample, a speed the
-paper does not print.  Each case was found by the configuration fuzzer (tests/schema_fuzz.py),
-where it stopped the workflow; here it becomes a row that says what it could not decide."""
+"""The numbers paper B's rows are made of: Tables 1 and 2 regenerated from their datasets, and
+the values where a configuration leaves some without one: a decay that never comes, a reduction
+from nothing, a run-up shorter than a sample, a speed the paper does not print.  Each such case
+was found by the configuration fuzzer (tests/schema_fuzz.py), where it stopped the workflow;
+here it becomes a row that says what it could not decide."""
 
 from __future__ import annotations
 
@@ -10,8 +11,11 @@ import re
 from functools import partial
 
 import numpy as np
+import xarray as xr
 
 from rotorvib.comparison import Reproduced
+from rotorvib.io.coords import pick
+from rotorvib.papers.b.curves import mean_over_ics
 
 _row = partial(Reproduced.of, "B")
 
@@ -53,3 +57,30 @@ def optimum_lead(forces, decay_times) -> tuple[float, float]:
     with np.errstate(invalid="ignore"):                  # inf/inf: NaN, as meant
         lead = np.min(np.concatenate([force[:-1] / force[-1], decay[:-1] / decay[-1]])) - 1
     return float(lead), float(decay[-1])
+
+
+def table1_rows(t1: xr.Dataset, kinematics: str) -> list[dict]:
+    """Optimum mass (minimum mean balance time over the ICs) and that mean, per speed."""
+    t = pick(t1, kinematics=kinematics)
+    mean, envelope = mean_over_ics(t.balance_time), mean_over_ics(t.envelope_time)
+    rows = []
+    for i, speed in enumerate(t1.speed.values):
+        curve = mean.isel(speed=i).values
+        best = int(np.nanargmin(curve)) if np.isfinite(curve).any() else None
+        rows.append({"speed_rad_s": float(speed),   # NaN where every mass has a censored run
+                     "m_opt_kg": np.nan if best is None else float(t1.mass.values[best]),
+                     "mean_balance_time_s": np.nan if best is None else float(curve[best]),
+                     "mean_envelope_time_s": np.nan if best is None
+                     else float(envelope.values[i, best]),
+                     "censored_masses": int(np.sum(~np.isfinite(curve)))})
+    return rows
+
+
+def table2_rows(forces: xr.Dataset, R: float, kinematics: str) -> list[dict]:
+    """Table 2 regenerated: per row, beta, m, the peak bearing force, its decay time and the
+    balance time at the race radius ``R`` (nearest calibration radius) under ``kinematics``."""
+    at = pick(forces, kinematics=kinematics).sel(R=R, method="nearest")
+    return [{"row": int(c), "beta": float(at.case_beta[i]), "m_kg": float(at.case_mass[i]),
+             "force_max_N": float(at.force_max[i]), "force_decay_time_s":
+             float(at.force_decay_time[i]), "balance_time_s": float(at.balance_time[i])}
+            for i, c in enumerate(at.case.values)]

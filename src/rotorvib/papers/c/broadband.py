@@ -27,8 +27,8 @@ from rotorvib.methods.ga import ParetoFront, pareto_front
 from rotorvib.models.absorber.frequency_response import (amplitude, bare_rotor_amplitude,
                                                          dimensionless_amplitude, rotor_peak,
                                                          theta_eq20)
-from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
-                                                 dual_to_vector)
+from rotorvib.models.absorber.parameters import (DUAL_NAMES, AbsorberSet, Rotor,
+                                                 dual_from_vector, dual_to_vector)
 from rotorvib.models.absorber.time_response import linear_response
 from rotorvib.models.absorber.tuning import den_hartog_single
 from rotorvib.papers.c.optimise import design_bounds
@@ -108,6 +108,33 @@ def _designs(rotor: Rotor, table2, x_single, d_single: float, x_broadband) -> di
             "broadband": dual_from_vector(x_broadband)}
 
 
+#: Nelder-Mead's relative tolerance on the peak of :func:`free_spring_dual` (its uncertainty).
+FREE_SPRING_TOL = 1e-9
+
+
+def free_spring_dual(rotor: Rotor, mass: float, d: float, band_w) -> tuple[AbsorberSet, ...]:
+    """The dual absorber of Den Hartog's body mass ``mass`` (two sets of ``mass / 2`` at radius
+    ``d``) whose springs and dampers, free of the paper's bounds, give the least peak of ``D``
+    over the band ``band_w``: Nelder-Mead on their logarithms from Den Hartog's tuning of each
+    half, the two staggered by 5 % in frequency (deterministic)."""
+    from scipy.optimize import minimize  # here: the other broadband jobs need no optimizer
+
+    half = den_hartog_single(rotor, m=mass / 2, d=d)
+
+    def sets(p):
+        k1, k2, c1, c2 = np.exp(p)
+        return (AbsorberSet(m=mass / 2, k=k1, c=c1, d=d),
+                AbsorberSet(m=mass / 2, k=k2, c=c2, d=d))
+
+    start = np.log([half.k * 0.95**2, half.k * 1.05**2, half.c, half.c])
+    best = minimize(lambda p: amplitude(rotor, sets(p), band_w).max(), start,
+                    method="Nelder-Mead", options={"xatol": 1e-10, "fatol": FREE_SPRING_TOL,
+                                                   "maxiter": 20000, "maxfev": 40000})
+    if not best.success:
+        raise ArithmeticError(f"the free-spring dual absorber's search failed: {best.message}")
+    return sets(best.x)
+
+
 def tuned_mass_floor(rotor: Rotor, k_min: float) -> float:
     """Least added mass (kg) of two sets both tuned to ``omega_n`` (``2 k / m = omega_n^2``)
     when every spring is at least ``k_min``: two sets of two bodies of ``2 k_min / omega_n^2``."""
@@ -127,6 +154,7 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
     by_seed = np.array([rotor_peak(rotor, dual_from_vector(pick_at_mass(f, mass_t2)))[1]
                         for f in (front, *spread_fronts)])
     designs = _designs(rotor, table2, x_single, d_single, x_broadband)
+    free = free_spring_dual(rotor, table2[0].m + table2[1].m, d_single, band_w)
     D = np.stack([amplitude(rotor, s, w) for s in designs.values()])
     band = np.array([amplitude(rotor, s, band_w).max() for s in designs.values()])
     peaks = np.array([rotor_peak(rotor, s) for s in designs.values()])
@@ -166,9 +194,18 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
          "broadband_peak_by_seed": ("seed", by_seed, {
              "long_name": "largest D over all frequencies of the broadband design, from each "
                           "seed of NSGA-II (the first is the design shown)", **one}),
+         "free_spring_peak": ((), rotor_peak(rotor, free)[1], {
+             "long_name": "largest D over all frequencies of a dual absorber of Den Hartog's "
+                          "mass and radius with springs and dampers free of the bounds", **one}),
+         "free_spring_parameters": ("parameter", [getattr(s, kind) for kind in "mkcd"
+                                                  for s in free], {
+             "long_name": "that design (m, k, c, d of set 1 and set 2; units: kg, N m-1, "
+                          "N s m-1, m by kind)", **one}),
          "tuned_mass_floor": ((), tuned_mass_floor(rotor, k_min), {
              "long_name": "least added mass of two sets tuned to omega_n within the bounds",
              "units": "kg"}),
+         "lower_bound_k": ((), float(k_min), {"long_name": "least spring stiffness the bounds "
+                                                          "allow", "units": "N m-1"}),
          "omega_n": ((), rotor.omega_n, {"long_name": "natural frequency of the rotor "
                                                   "without absorber", "units": "rad s-1"}),
          "theta": (("design", "t"), theta, {
@@ -234,6 +271,9 @@ def broadband_rows(ds: xr.Dataset) -> list[Reproduced]:
         return Margin(value, float(np.ptp(seeds)) / 2 / bb, "relative",
                       f"half the range of the broadband peak over {seeds.size} NSGA-II seeds")
 
+    free = float(ds.free_spring_peak)
+    k_free = ds.free_spring_parameters.values[2:4]
+    k_min = float(ds.lower_bound_k)
     front, dh = ds.front_band_peak.values, ds.front_den_hartog_peak.values
     below = front < dh
     where = (f"the front is below Den Hartog's curve from "
@@ -246,9 +286,17 @@ def broadband_rows(ds: xr.Dataset) -> list[Reproduced]:
                f"against {peak['table2']:.4g} (Table 2, {mass['table2']:.3g} kg) and "
                f"{peak['single_frequency']:.4g} (GA optimum of |Theta(omega_n)|, "
                f"{mass['single_frequency']:.3g} kg)", choices=CHOICES),
-        _claim("broadband_below_den_hartog", margin((peak["den_hartog"] - bb) / bb),
+        _claim("broadband_below_den_hartog",
+               {f"paper_c.bounds.k >= {k_min:g} N/m (the paper's)":
+                    margin((peak["den_hartog"] - bb) / bb),
+                "springs and dampers free of the bounds":
+                    Margin((peak["den_hartog"] - free) / free, FREE_SPRING_TOL, "relative",
+                           "Nelder-Mead's tolerance on the peak")},
                f"largest D {bb:.4g} (broadband dual) against {peak['den_hartog']:.4g} (Den "
                f"Hartog single absorber of {mass['den_hartog']:.3g} kg); {where}, and two sets "
                f"tuned to omega_n need at least {float(ds.tuned_mass_floor):.3g} kg within the "
-               "bounds (every spring >= the lower bound of k)", choices=CHOICES),
+               f"bounds (every spring >= {k_min:g} N/m). The verdict rests on that bound: with "
+               f"springs and dampers free, a dual absorber of Den Hartog's mass and radius "
+               f"reaches {free:.4g} (k = {k_free[0]:.4g}, {k_free[1]:.4g} N/m)",
+               choices=CHOICES),
     ]
