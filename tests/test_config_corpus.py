@@ -49,6 +49,9 @@ CASES = [
     ("paper_b.zeta_inversion.zeta", {"min": 0.004, "max": 0.016, "n": 100_000},
      "paper_b.zeta_inversion.zeta.n"),
     ("paper_b.uncertainty.ranges.zeta", [0.02, 0.005], None),
+    ("paper_b.balance_law.whirl_share", 0.0, None),
+    ("paper_b.balance_law.whirl_share_alternatives", [1.5],
+     "paper_b.balance_law.whirl_share_alternatives.0"),
     ("paper_c.distance_study.offsets", [0.0, 0.0], None),
     # paper B
     ("paper_b.machine.M", 0, None), ("paper_b.machine.n", 2.0, None),

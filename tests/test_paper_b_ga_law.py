@@ -105,6 +105,12 @@ def test_the_row_says_which_term_makes_the_optimum(around):
         by_amplitude.explanation
     (real,) = ga_law_rows(around)
     assert "heavier" not in real.explanation and "Heavier balls (+10%)" in real.explanation
+    # a flat change (no term carries it) is left out, and counted
+    flat = with_terms(np.broadcast_to(a[..., :1], a.shape).copy(),
+                      np.broadcast_to(s[..., :1], s.shape).copy())
+    (none,) = ga_law_rows(flat, flat=1e-5)
+    assert dict(none.holds)[""] is None
+    assert "all 3 neighbours whose change is flat, within 1e-05 s, left out" in none.explanation
 
 
 def test_a_band_edge_the_study_shares_is_not_a_failure_edge():

@@ -466,3 +466,49 @@ def test_support_damping_moves_the_decay_rate_and_beta_hardly():
     assert sigma[1] / sigma[0] == pytest.approx(1.2 ** e["zeta"], rel=0.01)
     row = support_damping_rows(ds, 0.01, neutral=1e-9)[0]
     assert claim_verdict(row.holds) == "SUPPORTED"
+
+
+def test_the_law_takes_the_rate_of_the_mode_that_carries_the_whirl():
+    """For balls heavy against the unbalance (m_bar / eps_bar = 5) the slowest decaying mode is
+    one of the balls alone (its share of the whirl about 0.002): r does not see it. The law
+    takes the slowest mode with a share of the whirl above its threshold, a whirl mode (share
+    0.8), whatever threshold between the two families; with a share of 0 it is the slowest of
+    all, as before."""
+    from rotorvib.papers.b.law import slow_decay_rate
+    from rotorvib.papers.b.stability_maps import balanced_modes
+
+    args = (0.01, 0.002, 0.01, 1.0, 2.0)
+    eig, share = balanced_modes(*args)
+    ball = np.argmax(eig.real)                                  # the slowest mode of all
+    assert share[ball] < 0.01
+    whirl = -np.max(eig.real[share > 0.5])
+    assert float(slow_decay_rate(*args, neutral=1e-9)) == pytest.approx(-eig.real[ball])
+    for threshold in (0.05, 0.1, 0.3):
+        assert float(slow_decay_rate(*args, neutral=1e-9, share=threshold)) == whirl
+    assert whirl > 5 * float(slow_decay_rate(*args, neutral=1e-9))
+
+
+def test_the_law_row_is_evaluated_at_each_whirl_share_and_states_its_domain():
+    """A constructed law dataset, two studies: one where the law is within 'close' and one
+    where it is 40 % off at every share; the row names both, and depends on no share."""
+    import xarray as xr
+
+    from rotorvib.choices import Close
+    from rotorvib.comparison import claim_verdict
+    from rotorvib.papers.b.law import law_rows
+
+    n = 40
+    good = 0.03 * np.cos(np.arange(n))
+    error = np.concatenate([good, np.full(n // 4, 0.4)])
+    runs = error.size
+    ds = xr.Dataset(
+        {"relative_error": (("share", "run"), np.stack([error, error])),
+         "relative_error_slowest": ("run", 2 * error),
+         "m_bar": ("run", np.full(runs, 0.01)), "eps_bar": ("run", np.full(runs, 0.012)),
+         "balance_time": ("run", np.linspace(3.0, 6.0, runs))},
+        coords={"share": ("share", [0.1, 0.3]),
+                "source": ("run", ["balance_beta"] * n + ["calibration"] * (n // 4))})
+    (row,) = law_rows(ds, Close(0.1, (0.05,)), resamples=50)
+    assert claim_verdict(row.holds) == "SUPPORTED" and len(row.holds) == 4
+    assert "Within 10% at the median for balance_beta; not for calibration" in row.explanation
+    assert any("whirl_share = 0.1" in c for c in row.choices)

@@ -606,13 +606,35 @@ rule b_pareto:
         "../scripts/b_pareto.py"
 
 
+# The law's sources: every balance study of the configuration (its fixed parameters, the
+# run-up's speed), Table 1, the basin map and the race-radius calibration (the forces of
+# Table 2's rows over R; the runs at the configured R are Table 2's).
+B_LAW_SOURCES = {
+    **{
+        f"balance_{name}": (
+            dataset("b", f"balance_{name}"),
+            {**study["fixed"], "speed": B["speed"]["omega"]},
+        )
+        for name, study in B["balance_studies"].items()
+    },
+    "table1": (
+        dataset("b", "table1"),
+        {"beta": B["table1"]["beta"], "eps_bar": B["table1"]["eps_bar"]},
+    ),
+    "basin": (
+        dataset("b", "basin"),
+        {"eps_bar": B["basin"]["eps_bar"], "speed": B["speed"]["omega"]},
+    ),
+    "calibration": (
+        dataset("b", "forces"),
+        {"eps_bar": B["table2"]["eps_bar"], "speed": B["table2"]["speed"]},
+    ),
+}
+
+
 rule b_balance_law:
     input:
-        balance_beta=dataset("b", "balance_beta"),
-        balance_mass=dataset("b", "balance_mass"),
-        table1=rules.b_table1_runs.output[0],
-        basin=dataset("b", "basin"),
-        table2=rules.b_forces.output[0],
+        **{name: path for name, (path, _) in B_LAW_SOURCES.items()},
     output:
         dataset("b", "balance_law"),
     log:
@@ -623,23 +645,12 @@ rule b_balance_law:
     params:
         setup=B_SETUP,
         neutral=B["marginal_growth"],
-        # each source's parameters that its dataset does not vary (the speed: the run-up's)
-        fixed={
-            "balance_beta": {
-                **B["balance_studies"]["beta"]["fixed"],
-                "speed": B["speed"]["omega"],
-            },
-            "balance_mass": {
-                **B["balance_studies"]["mass"]["fixed"],
-                "speed": B["speed"]["omega"],
-            },
-            "table1": {"beta": B["table1"]["beta"], "eps_bar": B["table1"]["eps_bar"]},
-            "basin": {"eps_bar": B["basin"]["eps_bar"], "speed": B["speed"]["omega"]},
-            "table2": {
-                "eps_bar": B["table2"]["eps_bar"],
-                "speed": B["table2"]["speed"],
-            },
-        },
+        shares=[
+            B["balance_law"]["whirl_share"],
+            *B["balance_law"]["whirl_share_alternatives"],
+        ],
+        # each source's parameters that its dataset does not vary
+        fixed={name: fixed for name, (_, fixed) in B_LAW_SOURCES.items()},
     message:
         "Paper B (beyond the paper): the balance-time law against every balanced run"
     script:

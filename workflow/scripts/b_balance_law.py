@@ -12,5 +12,5 @@ producers = snakemake.params.input_producers  # each input dataset's rule and co
 p = snakemake.params
 sources = {name: (read_dataset(snakemake.input[name], producers), fixed)
            for name, fixed in p.fixed.items()}
-ds = law_dataset(Setup.from_config(**p.setup), sources, neutral=p.neutral)
+ds = law_dataset(Setup.from_config(**p.setup), sources, neutral=p.neutral, shares=p.shares)
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -15,11 +15,14 @@ from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
 def balance_law(law, paper):
     """Beyond the paper: the balance-time law against the integration, each balanced run a
     point (colour: study), and the distribution of the relative error with its median and
-    90th percentile."""
+    90th percentile; the rate is that of the slowest mode carrying the law's whirl share (the
+    dataset's first)."""
+    law = law.isel(share=0) if "share" in law.dims else law
     errors = law.relative_error.values
     fig, (ax1, ax2) = figure(1, 2, figsize=(11.0, 4.6))
     ax1.set(xlabel="balance time, integration (s)", ylabel="balance time, law (s)",
-            title="t_pk + ln(F_pk / (k r_thr)) / sigma")
+            title="t_pk + ln(F_pk / (k r_thr)) / sigma,\nsigma of the slowest mode carrying "
+                  "the whirl")
     ax2.set(xlabel="relative error of the law (%)", ylabel="runs",
             title="error of the law over the balanced runs")
     if not np.isfinite(errors).any():    # e.g. a support without damping, a huge threshold

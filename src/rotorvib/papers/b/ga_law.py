@@ -171,20 +171,28 @@ def ga_law_dataset(setup: Setup, ga: xr.Dataset, ics: dict, beta_bounds, mass_bo
     )
 
 
-def ga_law_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[Reproduced]:
+def ga_law_rows(ds: xr.Dataset, *, flat: float = 0.0, resamples: int = 200,
+                seed: int = 0) -> list[Reproduced]:
     """Beyond the paper: is the GA's optimum the point whose passage leaves the least whirl,
     rather than the one whose whirl decays fastest?  Over every neighbour in the GA's box that
     balances: the share of the change of the line's time carried by the amplitude term,
-    ``|amp| / (|amp| + |rate|)``; the margin is its median less 1/2, the uncertainty twice its
-    bootstrap standard deviation.  The explanation gives how often the optimum leaves the least
-    whirl, the fit against the eigenvalues and the integration, and the peak-force law there."""
+    ``|amp| / (|amp| + |rate|)``, left out where the change is flat (``|amp| + |rate|`` within
+    ``flat`` seconds, the balance times' own accuracy: the share is undefined there, and the
+    row counts them); the margin is its median less 1/2, the uncertainty twice its bootstrap
+    standard deviation.  The explanation gives how often the optimum leaves the least whirl,
+    the fit against the eigenvalues and the integration, and the peak-force law there."""
     amp, rate = ds.amplitude_term.values[..., 1:], ds.rate_term.values[..., 1:]
     balanced = np.isfinite(ds.balance_time.values)
-    use = ((ds.in_box.values[..., 1:] == 1) & balanced[..., 1:] & balanced[..., :1]
-           & np.isfinite(amp) & np.isfinite(rate))
+    candidates = ((ds.in_box.values[..., 1:] == 1) & balanced[..., 1:] & balanced[..., :1]
+                  & np.isfinite(amp) & np.isfinite(rate))
+    with np.errstate(invalid="ignore"):
+        flat_change = candidates & (np.abs(amp) + np.abs(rate) <= flat)
+    use = candidates & ~flat_change
     if not use.any():
-        return [Reproduced.claim("B", "law_explains_ga_optimum", None,
-                                 "undetermined: no neighbour of a GA optimum balances",
+        why = (f"all {int(flat_change.sum())} neighbours whose change is flat, within {flat:g} s, "
+               "left out: no term carries it" if flat_change.any()
+               else "no neighbour of a GA optimum balances")
+        return [Reproduced.claim("B", "law_explains_ga_optimum", None, f"undetermined: {why}",
                                  choices=GA_LAW_CHOICES)]
     share = (np.abs(amp) / (np.abs(amp) + np.abs(rate)))[use]
     rng = np.random.default_rng(seed)
@@ -203,7 +211,9 @@ def ga_law_rows(ds: xr.Dataset, *, resamples: int = 200, seed: int = 0) -> list[
         "B", "law_explains_ga_optimum",
         Margin(float(np.median(share)) - 0.5, 2 * float(spread), "share of the change",
                f"bootstrap over {share.size} neighbours"),
-        f"around each of the GA's {problems} optima (beta and m moved by {float(ds.step):.0%}) "
+        f"around each of the GA's {problems} optima (beta and m moved by {float(ds.step):.0%}; "
+        f"{int(flat_change.sum())} neighbours whose change is flat, within {flat:g} s, left "
+        "out: no term carries it) "
         f"the whirl after the run-up decays on a line of the log scale (largest residual "
         f"{np.nanmax(ds.fit_residual.values):.2f} in ln r; its balance time within "
         f"{np.nanmax(line_err):.2f} s of the integration's). The amplitude the passage leaves "

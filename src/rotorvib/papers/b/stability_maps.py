@@ -27,6 +27,25 @@ def balanced_eigenvalues(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> n
     return eig
 
 
+def balanced_modes(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2):
+    """The balanced state's eigenvalues (as :func:`balanced_eigenvalues`) and each mode's share
+    of the whirl: ``|(u, v)| / |(u, v, a1, a2)|`` of its eigenvector's positions (the rotor's
+    centre against the balls' angles, in units of R and radians), 1 for a mode of the rotor
+    alone and near 0 for a mode of the balls alone; NaN where no balanced state exists."""
+    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    eig = np.full(mu.shape + (8,), np.nan, dtype=complex)
+    share = np.full(mu.shape + (8,), np.nan)
+    exists = rho >= 0.5
+    if exists.any():
+        s = np.sqrt(1 + n * np.broadcast_to(m_bar, mu.shape)[exists])
+        lam, vectors = np.linalg.eig(stability.jacobian(mu[exists], rho[exists], z[exists],
+                                                        b[exists], om[exists]))
+        eig[exists] = lam / s[:, None]
+        positions = np.linalg.norm(vectors[..., :4, :], axis=-2)
+        share[exists] = np.linalg.norm(vectors[..., :2, :], axis=-2) / positions
+    return eig, share
+
+
 def growth_rate(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray:
     """Largest real part of the eigenvalues of the balanced state (:func:`balanced_eigenvalues`)
     in units of paper B's omega_n; NaN where no balanced state exists.  Vectorised over
