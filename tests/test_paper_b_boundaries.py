@@ -98,9 +98,11 @@ def test_rows_decide_on_the_whole_curve(beta_plane):
     assert above.holds == (("", True),)
     # the least excess over the critical speed is set by the traced range (a / beta at its
     # top, under 1e-3): the margin is a, the excess scaled by beta, which tends to a
+    # the limit of beta (omega - omega_c), from exact onsets, and the traced points' fit agree
     a, spread = approach_coefficient(beta_plane)
-    assert above.margin.value == a and above.margin.unit == "beta x omega_bar"
-    assert 0.4 < a < 0.5 and spread < 1e-3
+    limit = float(beta_plane.asymptote_a)
+    assert above.margin.value == limit and above.margin.unit == "beta x omega_bar"
+    assert abs(limit - a) < 1e-3 and float(beta_plane.asymptote_error) < 1e-4
     assert "the margin is a, not the least excess" in above.explanation
     assert rows["boundary_lowest_beta"].holds == (("", True),)
     assert rows["boundary_lowest_beta"].margin.value == pytest.approx(9.53e-4, rel=2e-2)
@@ -157,3 +159,26 @@ def test_where_the_linearisation_does_not_exist_the_tracked_value_is_nan():
             g.eigenvalues(np.array([17.0, 1.0]))
         assert np.isnan(g(np.array([17.0, 1.0]))) and np.isnan(g(np.array([300.0, 1.0])))
         assert np.isfinite(g(np.array([0.0, 1.0])))
+
+
+def test_the_onsets_extremes_are_located_and_a_brute_force_scan_agrees(beta_plane):
+    """The traced points only bracket the onset's extremes (Fig 2's maximum sits between
+    points some 0.1 in beta apart); solving Re lambda = 0 with d Re lambda / d beta = 0 locates
+    each, and exact onsets on a fine grid of beta around it never pass the located extreme
+    speed, come within 1e-5 of it and place it within a grid step."""
+    from rotorvib.papers.b.boundaries import onset
+
+    fixed = {k: v for k, v in BASE.items() if k != "beta"}
+    turns = zip(beta_plane.turn_omega_bar_beta.values, beta_plane.turn_omega_bar_omega_bar.values,
+                beta_plane.turn_omega_bar_error.values)
+    found = 0
+    for b_star, w_star, error in turns:
+        grid = b_star * np.geomspace(0.95, 1.05, 21)
+        onsets = np.array([onset("beta", fixed, b, 50.0, 2, 2000) for b in grid])
+        sign = 1.0 if onsets[[0, -1]].max() < w_star else -1.0    # a maximum, else a minimum
+        k = int(np.argmax(sign * onsets))
+        assert error < 1e-8
+        assert sign * (onsets - w_star).max() <= 1e-9 and abs(onsets[k] - w_star) < 1e-5
+        assert abs(np.log(grid[k] / b_star)) <= np.log(1.05 / 0.95) / 20
+        found += 1
+    assert found >= 1

@@ -124,3 +124,42 @@ def turning_points(values: np.ndarray, floor: float = 1e-3) -> np.ndarray:
     signed = np.flatnonzero(np.abs(values) > floor)
     s = np.sign(values[signed])
     return signed[np.flatnonzero(s[:-1] * s[1:] < 0)]
+
+
+def _turning_point(g, z0, axis: int, h: float, tol: float, iterations: int):
+    """Newton's method on ``g(z) = 0, dg/dz_(1 - axis) (z) = 0`` from ``z0`` (derivatives by
+    central differences of width ``2 h``); the point and the last step's length."""
+    other = 1 - axis
+
+    def residual(z):
+        return np.array([g(z), gradient(g, z, h)[other]])
+
+    z = np.asarray(z0, dtype=float).copy()
+    step = np.inf
+    for _ in range(iterations):
+        f = residual(z)
+        e = np.eye(2) * h
+        jac = np.column_stack([(residual(z + e[i]) - residual(z - e[i])) / (2 * h)
+                               for i in range(2)])
+        dz = np.linalg.solve(jac, -f)
+        z, step = z + dz, float(np.hypot(*dz))
+        if step <= tol:
+            break
+    return z, step
+
+
+def refine_turning_point(g: Callable[[np.ndarray], float], z0, axis: int, *,
+                         h: float = 1e-5, tol: float = 1e-12,
+                         iterations: int = 30) -> tuple[np.ndarray, float]:
+    """The point near ``z0`` where the curve ``g = 0`` turns in coordinate ``axis``: its
+    tangent ``(-g_y, g_x)`` has no component along ``axis``, so ``g = 0`` and
+    ``dg/dz_(1 - axis) = 0`` (a fold in ``x`` for ``axis = 0``, an extremum of ``y`` along the
+    curve for ``axis = 1``), solved by Newton's method from a traced point next to the turn
+    (:func:`turning_points`).  Returns the point and an error bound: the larger of the last
+    Newton step and the distance to the point found with differences twice as wide (the
+    differences' own error)."""
+    if axis not in (0, 1):
+        raise ValueError(f"axis must be 0 or 1, not {axis!r}")
+    z, step = _turning_point(g, z0, axis, h, tol, iterations)
+    wide, _ = _turning_point(g, z0, axis, 2 * h, tol, iterations)
+    return z, max(step, float(np.hypot(*(z - wide))))

@@ -26,7 +26,8 @@ import xarray as xr
 from scipy.optimize import brentq
 
 from rotorvib.comparison import Margin, Reproduced
-from rotorvib.methods.continuation import gradient, tangent, trace, turning_points
+from rotorvib.methods.continuation import (gradient, refine_turning_point, tangent, trace,
+                                           turning_points)
 from rotorvib.papers.b.choices import BOUNDARY_CHOICES
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta, on_boundary
 from rotorvib.papers.b.setup import dataset_attrs
@@ -114,6 +115,24 @@ def onset(plane: str, fixed: dict, p: float, omega_max: float, n: int, samples: 
     return edges[0]
 
 
+def approach_limit(fixed: dict, n: int, *, omega_max: float, samples: int,
+                   betas=(1e3, 1e4, 1e5)) -> tuple[float, float]:
+    """``a = lim beta (omega_onset - omega_c)`` as ``beta -> inf`` (``omega_c`` the critical
+    speed ``1 / sqrt(1 + n m_bar)``): ``beta (onset - omega_c)`` at ``betas`` (exact onsets,
+    :func:`onset`), extrapolated as ``a + b / beta`` from the last two; the error bound is its
+    distance to the extrapolation from the first two.  Beyond ``beta = 1e5`` the growth rate
+    near the critical speed (about 1e-11 at 1e6) is lost in the eigenvalues' round-off."""
+    critical = 1 / np.sqrt(1 + n * fixed["m_bar"])
+    scaled = [b * (onset("beta", fixed, b, omega_max, n, samples) - critical) for b in betas]
+
+    def extrapolate(i):
+        (b1, b2), (a1, a2) = betas[i:i + 2], scaled[i:i + 2]
+        return (b2 * a2 - b1 * a1) / (b2 - b1)
+
+    a = extrapolate(len(betas) - 2)
+    return float(a), float(abs(a - extrapolate(len(betas) - 3)))
+
+
 def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4,
               senses=(-1.0, 1.0)):
     """Trace the crossing curve through ``z0`` in each of ``senses`` (down, up in the
@@ -196,6 +215,11 @@ def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_ma
             add(np.array([top, edge]), (-1.0,), windows)
     points, tangents, crossing, others, error, branch, curve_of = (
         np.concatenate(c) for c in zip(*parts))
+    limit = (approach_limit(fixed, n, omega_max=omega_max, samples=window_samples)
+             if plane == "beta" else None)
+    turns = {name: [refine_turning_point(TrackedEigenvalue(plane, fixed, n, crossing[i]),
+                                         points[i], axis=0 if name == plane else 1)
+                    for i in idx] for name, idx in folds.items()}
     p, omega = 10.0 ** points[:, 0], points[:, 1]
     m_bar = p if plane == "m_bar" else np.full(p.shape, fixed["m_bar"])
     one = {"units": "1"}
@@ -235,9 +259,25 @@ def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_ma
                              {"long_name": f"index of the point after which the curve turns "
                                            f"back in {name}", **one})
             for name, idx in folds.items()},
+         **{f"turn_{name}_{coord}": (f"fold_{name}", np.array(
+             [10.0 ** z[0] if coord == plane else z[1] for z, _ in turns[name]], dtype=float),
+             {"long_name": f"{coord} where the curve turns back in {name}, located by "
+                           "solving Re lambda = 0 with its tangency condition", **one})
+            for name in folds for coord in (plane, "omega_bar")},
+         **{f"turn_{name}_error": (f"fold_{name}", np.array([e for _, e in turns[name]],
+                                                             dtype=float),
+                                   {"long_name": f"error bound of that point in (log10 {plane}, "
+                                                 "omega_bar)", **one})
+            for name in folds},
          **{f"fixed_{k}": ((), float(v), {"long_name": PLANES.get(k, k), **one})
             for k, v in fixed.items()},
-         "start": ((), float(start), {"long_name": f"{plane} at which tracing starts", **one})},
+         "start": ((), float(start), {"long_name": f"{plane} at which tracing starts", **one}),
+         **({"asymptote_a": ((), limit[0], {
+                 "long_name": "a = lim beta (omega_onset - critical speed) as beta grows, from "
+                              "exact onsets at beta = 1e3, 1e4, 1e5 extrapolated", **one}),
+             "asymptote_error": ((), limit[1], {
+                 "long_name": "error bound of a: the two extrapolations apart", **one})}
+            if limit else {})},
         coords={plane: ("point", p, {"long_name": PLANES[plane], **one}),
                 "component": ("component", np.array([f"log10 {plane}", "omega_bar"],
                                                     dtype=object),
@@ -261,10 +301,14 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
     spans = "; ".join(f"{plane} {float(e[plane].min()):.3g}-{float(e[plane].max()):.3g}"
                       for plane, e in edges.items())
     beta = planes["beta"]
-    a, a_spread = approach_coefficient(beta)
+    fitted, top_spread = approach_coefficient(beta)
+    a, a_error = float(beta.asymptote_a), float(beta.asymptote_error)
     folds = beta.fold_omega_bar.values
-    extremes = ", ".join(f"{float(beta.omega_onset[j]):.3f} at beta = {float(beta.beta[j]):.3g}"
-                         for j in folds)
+    extremes = ", ".join(f"{w:.6f} at beta = {b:.6g} (+/- {e:.1e} in (log10 beta, omega_bar), "
+                         "located by Re lambda = 0 and d Re lambda / d beta = 0)"
+                         for w, b, e in zip(beta.turn_omega_bar_omega_bar.values,
+                                            beta.turn_omega_bar_beta.values,
+                                            beta.turn_omega_bar_error.values))
     fold_text = (f"the onset has extremes {extremes}" if folds.size
                  else "the onset falls monotonically with beta")
     b_min, at, b_moves = lowest_beta(beta)
@@ -281,8 +325,9 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
     worst_other = min((float(excess[p].min()) for p in excess if p != "beta"), default=np.inf)
     margin = (Margin(worst_other, error, "omega_bar", "continuation; uncertainty: the largest "
                      "speed error bound on the curve") if worst_other < 0 else
-              Margin(a, a_spread, "beta x omega_bar", "beta (omega_onset - omega_c) at the top "
-                     "of the traced beta range, which tends to a; uncertainty: its spread there"))
+              Margin(a, a_error, "beta x omega_bar", "a = lim beta (omega_onset - omega_c), "
+                     "extrapolated from exact onsets at beta = 1e3, 1e4, 1e5; uncertainty: two "
+                     "extrapolations apart"))
     return [
         Reproduced.claim(
             "B", "boundary_above_critical", margin,
@@ -290,9 +335,10 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
             f"critical speed, closest {excess[lowest][i]:.2e} at {lowest} = "
             f"{float(edges[lowest][lowest][i]):.3g}, a distance the traced range sets: as "
             f"beta grows the onset tends to the critical speed from above as a / beta, a = "
-            f"{a:.4f} (beta (omega - omega_c) at the top within {a_spread:.1e} of it), so the "
-            "onset's infimum is the critical speed itself and the margin is a, not the least "
-            "excess. The balls then follow the rotor "
+            f"{a:.6f} +/- {a_error:.1e} from its limit (a fit over the traced top decade gives "
+            f"{fitted:.6f}, beta (omega - omega_c) at the top within {top_spread:.1e} of it), "
+            "so the onset's infimum is the critical speed itself and the margin is a, not the "
+            "least excess. The balls then follow the rotor "
             "quasi-statically, and the reduced ball equation's trace changes sign exactly at "
             f"the critical speed{windows}", choices=BOUNDARY_CHOICES),
         Reproduced.claim(
