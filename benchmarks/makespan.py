@@ -8,14 +8,21 @@ joins each job's outputs, links a job to the jobs that made its inputs, and prin
 - the critical chain: the longest path of jobs through their dependencies, which no number of
   cores can shorten, and its share of the total;
 - the simulated makespan on 2, 4, 8, 16 and 64 cores (or ``--cores``): jobs started as their
-  inputs are made, longest remaining chain first, one core each, with the durations measured.
+  inputs are made, longest remaining chain first, with the durations measured; a batch job (a
+  rule declaring ``threads: BATCH_THREADS``, found in the rule files) gets half the cores, as
+  the workflow gives it, and takes ``T (s + (1 - s) / threads)`` for its recorded time ``T``
+  (Amdahl's law, ``s`` the serial share, ``--serial``), every other job one core.
 
-Run from the repository root after a run of the paper configuration::
+Run from the repository root after a run of the paper configuration with ``-j2`` (every job on
+one thread, as recorded)::
 
-    python -m benchmarks.makespan [--results results] [--cores 2 4 8 16 64]
+    python -m benchmarks.makespan [--results results] [--cores 2 4 8 16 64] [--serial 0.1]
 
-The durations are the run's own (on the machine and with the ``-j`` it had): a job that shared
-its core ran longer than it would alone, so the simulation is an upper bound where the run was
+The serial share of a batch job is measured by running it with one and with two threads
+(``snakemake -j2 --forcerun b_ga --set-threads b_ga=1`` and ``=2``, then ``s = 2 T2 / T1 -
+1`` from the two ``results/benchmarks/b_ga.tsv``); docs/performance.md keeps the figure. The
+durations are the run's own (on the machine and with the ``-j`` it had): a job that shared its
+core ran longer than it would alone, so the simulation is an upper bound where the run was
 crowded. The README quotes no timing: this script measures it on the machine at hand.
 """
 
@@ -26,10 +33,12 @@ import ast
 import base64
 import heapq
 import json
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 METADATA = Path(".snakemake/metadata")
+RULES = Path("workflow/rules")
 
 
 @dataclass
@@ -41,6 +50,7 @@ class Job:
     end: float
     outputs: set[str] = field(default_factory=set)
     inputs: set[str] = field(default_factory=set)
+    threads: int = 1
 
     @property
     def duration(self) -> float:
@@ -132,26 +142,58 @@ def critical_chain(jobs: list[Job]) -> tuple[float, list[Job]]:
     return max(tail, default=0.0), chain
 
 
+def batch_rules(rules: Path = RULES) -> set[str]:
+    """The rules that declare ``threads: BATCH_THREADS`` in the rule files, and those that
+    use one of them (``use rule X as Y with:`` inherits its threads)."""
+    text = "".join(p.read_text() for p in sorted(rules.glob("*.smk")))
+    blocks = re.split(r"^(?=rule |use rule )", text, flags=re.M)
+    batch = {re.match(r"rule (\w+)", b).group(1) for b in blocks
+             if b.startswith("rule ") and "threads: BATCH_THREADS" in b}
+    for b in blocks:
+        if m := re.match(r"use rule (\w+) as (\w+)", b):
+            if m.group(1) in batch:
+                batch.add(m.group(2))
+    return batch
+
+
+def on_cores(jobs: list[Job], cores: int, batch: set[str], serial: float) -> list[Job]:
+    """The jobs as the workflow runs them on ``cores`` cores: a batch job on
+    ``max(1, cores // 2)`` threads, its time by Amdahl's law with serial share ``serial``
+    (module docstring); ``Job.threads`` says how many cores each takes."""
+    threads = max(1, cores // 2)
+    scaled = []
+    for job in jobs:
+        t = threads if job.rule in batch else 1
+        factor = serial + (1 - serial) / t
+        scaled.append(Job(job.rule, job.start, job.start + job.duration * factor,
+                          job.outputs, job.inputs, t))
+    return scaled
+
+
 def simulated_makespan(jobs: list[Job], cores: int) -> float:
-    """List scheduling on ``cores`` cores: a job starts when its inputs are made and a core is
-    free, the ready job with the longest remaining chain first; each takes one core for its
-    measured duration."""
+    """List scheduling on ``cores`` cores: a job starts when its inputs are made and its
+    ``threads`` cores are free, the ready jobs by longest remaining chain first (one that does
+    not fit lets a smaller one start); each takes its cores for its duration."""
     needs = dependencies(jobs)
     tail, users = tails(jobs, needs), users_of(needs)
     waiting = {i: len(before) for i, before in needs.items()}
     ready = [(-tail[i], i) for i, n in waiting.items() if n == 0]
-    heapq.heapify(ready)
     running: list[tuple[float, int]] = []
-    now = 0.0
+    now, free = 0.0, cores
     while ready or running:
-        while ready and len(running) < cores:
-            _, i = heapq.heappop(ready)
-            heapq.heappush(running, (now + jobs[i].duration, i))
+        ready.sort()
+        for entry in list(ready):
+            need = min(jobs[entry[1]].threads, cores)
+            if need <= free:
+                ready.remove(entry)
+                free -= need
+                heapq.heappush(running, (now + jobs[entry[1]].duration, entry[1]))
         now, i = heapq.heappop(running)
+        free += min(jobs[i].threads, cores)
         for j in users[i]:
             waiting[j] -= 1
             if waiting[j] == 0:
-                heapq.heappush(ready, (-tail[j], j))
+                ready.append((-tail[j], j))
     return now
 
 
@@ -159,22 +201,29 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--results", default="results", help="the run's results folder")
     parser.add_argument("--cores", type=int, nargs="+", default=[2, 4, 8, 16, 64])
+    parser.add_argument("--serial", type=float, default=0.1,
+                        help="serial share of a batch job (module docstring: how to measure)")
     args = parser.parse_args(argv)
     jobs = read_jobs(args.results)
     if not jobs:
         raise SystemExit(f"no job records under {args.results}/: run the workflow first")
     total = sum(job.duration for job in jobs)
+    batch = batch_rules()
     length, chain = critical_chain(jobs)
     print(f"{len(jobs)} jobs under {args.results}/, total job time {total:.1f} s")
-    print(f"critical chain {length:.1f} s = {length / total:.2f} of the total:")
+    print(f"critical chain, every job on one thread: {length:.1f} s = {length / total:.2f} of "
+          "the total:")
     for job in chain:
         print(f"  {job.rule:<28} {job.duration:7.1f} s")
-    base = simulated_makespan(jobs, args.cores[0])
-    print("cores  simulated makespan  of the first")
+    print(f"batch jobs on half the cores (serial share {args.serial:g}): "
+          + ", ".join(sorted({j.rule for j in jobs if j.rule in batch})))
+    base = simulated_makespan(on_cores(jobs, args.cores[0], batch, args.serial), args.cores[0])
+    print("cores  simulated makespan  of the first  critical chain  of the total")
     for cores in args.cores:
-        span = simulated_makespan(jobs, cores)
-        print(f"{cores:5d}  {span:16.1f} s  {span / base:12.2f}")
-
+        scaled = on_cores(jobs, cores, batch, args.serial)
+        span, (chain_length, _) = simulated_makespan(scaled, cores), critical_chain(scaled)
+        print(f"{cores:5d}  {span:16.1f} s  {span / base:12.2f}  {chain_length:12.1f} s  "
+              f"{chain_length / total:12.2f}")
 
 if __name__ == "__main__":
     main()

@@ -50,3 +50,22 @@ def test_list_scheduling_starts_the_longest_chain_first(metadata, cores, makespa
     """Two cores: a (chain 7) and e (chain 5) first, before b (4); at 4, b before c (its chain
     4 against 3); c at 5 when e ends; d at 7, done at 8. One core: the sum, 15."""
     assert simulated_makespan(read_jobs("results", metadata), cores) == pytest.approx(makespan)
+
+
+def test_batch_jobs_take_half_the_cores_by_amdahls_law(metadata):
+    """A batch job (a rule that declares BATCH_THREADS) on 8 cores runs on 4 threads: its
+    recorded 4 s becomes 4 (0.1 + 0.9 / 4) = 1.3 s, and it takes 4 cores; other jobs keep
+    theirs. The rule files name the batch rules, with the rules that use them."""
+    from benchmarks.makespan import batch_rules, on_cores
+
+    jobs = read_jobs("results", metadata)
+    scaled = {j.rule: j for j in on_cores(jobs, 8, {"a"}, 0.1)}
+    assert scaled["a"].duration == pytest.approx(1.3) and scaled["a"].threads == 4
+    assert scaled["b"].duration == pytest.approx(3.0) and scaled["b"].threads == 1
+    # a: 1.3, then c: 2 -> d at 3.3 + 1; b (3 s) and e (5 s) beside it on the other cores
+    assert simulated_makespan(list(scaled.values()), 8) == pytest.approx(5.0)
+    # on 2 cores a batch job takes one thread, as recorded
+    assert [j.duration for j in on_cores(jobs, 2, {"a"}, 0.1)] == [j.duration for j in jobs]
+    found = batch_rules(ROOT / "workflow/rules")
+    assert {"b_ga", "b_ga_shard", "b_table1_runs", "b_zeta_inversion"} <= found
+    assert "comparison" not in found and "b_time_responses" not in found

@@ -68,6 +68,15 @@ A, B, C = (config[f"paper_{paper}"] for paper in "abc")
 # the comparison's reading of the papers' words ("close" and its alternatives), shared by
 # every paper's claims (rotorvib.comparison.Close)
 CLOSE = config["comparison"]
+# Threads of a job that shares a batch of runs out over threads (paper B's batch studies,
+# rotorvib.models.balancer.simulate): half the cores Snakemake is given, so that -j2 runs two
+# single-threaded jobs side by side as it always did and a larger -j hands each batch job
+# several cores (the SLURM profile sets its own with set-threads). A command given no cores
+# (--rulegraph, --lint) plans with one.
+try:
+    BATCH_THREADS = max(1, int(workflow.cores) // 2)
+except (WorkflowError, TypeError):
+    BATCH_THREADS = 1
 # Where every output goes: results/ for the paper configuration, its own folder for another
 # (config key `results`; the reduced configuration writes to results/reduced).
 RESULTS_DIR = config["results"]

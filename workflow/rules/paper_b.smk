@@ -380,6 +380,7 @@ rule b_balance_study_shard:
         shards=r"\d+",
         study="|".join(B["balance_studies"]),
     priority: LONGEST_CHAIN
+    threads: BATCH_THREADS
     resources:
         runtime=30,
     params:
@@ -434,6 +435,7 @@ rule b_ga_shard:
         shard=r"\d+",
         shards=r"\d+",
     priority: BESIDE_THE_COMPILE
+    threads: BATCH_THREADS
     resources:
         runtime=60,
     params:
@@ -469,6 +471,7 @@ rule b_table1_runs_shard:
         shard=r"\d+",
         shards=r"\d+",
     priority: LONGEST_CHAIN
+    threads: BATCH_THREADS
     resources:
         runtime=30,
     params:
@@ -504,6 +507,7 @@ rule b_forces_shard:
         shard=r"\d+",
         shards=r"\d+",
     priority: LONGEST_CHAIN
+    threads: BATCH_THREADS
     resources:
         runtime=30,
     params:
@@ -544,6 +548,7 @@ rule b_uncertainty_shard:
         shard=r"\d+",
         shards=r"\d+",
     priority: LONGEST_CHAIN
+    threads: BATCH_THREADS
     resources:
         runtime=30,
     params:
@@ -592,6 +597,7 @@ rule b_pareto:
     priority: LONGEST_CHAIN
     # one search each, it cannot be split: a cluster job when the batch studies are (common.smk)
     localrule: B["shards"] == 1
+    threads: BATCH_THREADS
     resources:
         runtime=30,
     params:
@@ -692,6 +698,7 @@ rule b_zeta_inversion:
     priority: LONGEST_CHAIN
     # about two thousand run-ups: seconds, where Snakemake runs
     localrule: True
+    threads: BATCH_THREADS
     params:
         **B_RUNS,
         zeta_inversion=B["zeta_inversion"],
@@ -723,6 +730,7 @@ rule b_basin_shard:
         shard=r"\d+",
         shards=r"\d+",
     priority: LONGEST_CHAIN
+    threads: BATCH_THREADS
     resources:
         runtime=60,
     params:
@@ -845,6 +853,7 @@ rule b_discrepancies:
         benchmarks("b_discrepancies")
     priority: LONGEST_CHAIN
     localrule: True
+    threads: BATCH_THREADS
     params:
         paper_b={
             **B_SETUP,
