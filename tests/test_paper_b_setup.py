@@ -506,7 +506,7 @@ def test_the_law_row_is_evaluated_at_each_whirl_share_and_states_its_domain():
          "relative_error_slowest": ("run", 2 * error),
          "m_bar": ("run", np.full(runs, 0.01)), "eps_bar": ("run", np.full(runs, 0.012)),
          "balance_time": ("run", np.linspace(3.0, 6.0, runs))},
-        coords={"share": ("share", [0.1, 0.3]),
+        coords={"whirl_share": ("share", [0.1, 0.3]),
                 "source": ("run", ["balance_beta"] * n + ["calibration"] * (n // 4))})
     (row,) = law_rows(ds, Close(0.1, (0.05,)), resamples=50)
     assert claim_verdict(row.holds) == "SUPPORTED" and len(row.holds) == 4

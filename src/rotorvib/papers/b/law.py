@@ -159,7 +159,7 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
                             (predicted - data["balance_time"]) / data["balance_time"], error),
          "relative_error_slowest": ("run", (slowest - data["balance_time"])
                                     / data["balance_time"], error)},
-        coords={"share": ("share", np.asarray(shares), {
+        coords={"whirl_share": ("share", np.asarray(shares), {
                     "long_name": "least share of the whirl of the mode whose rate the law "
                                  "takes (the first is the law's)", **one}),
                 "source": ("run", data["source"], {"long_name": "study the run belongs to"}),
@@ -226,16 +226,16 @@ def law_rows(ds: xr.Dataset, close: Close, *, resamples: int = 200,
     twice the bootstrap standard deviation of that median.  The explanation states the domain
     (:func:`domain_text`)."""
     choices = LAW_CHOICES + (
-        f"paper_b.balance_law.whirl_share = {float(ds.share[0]):g} (the least share of the "
+        f"paper_b.balance_law.whirl_share = {float(ds.whirl_share[0]):g} (the least share of the "
         "whirl of the mode whose rate the law takes, chosen; alternatives "
-        + ", ".join(f"{v:g}" for v in ds.share.values[1:]) + " evaluated)", close.choice)
+        + ", ".join(f"{v:g}" for v in ds.whirl_share.values[1:]) + " evaluated)", close.choice)
     errors = np.abs(ds.relative_error.values)
     if not np.isfinite(errors).any():
         return [Reproduced.claim("B", "balance_law_close", None,
                                  "undetermined: no balanced run with a decaying mode to test "
                                  "the law on", choices=choices)]
     holds = {}
-    for i, share in enumerate(ds.share.values):
+    for i, share in enumerate(ds.whirl_share.values):
         e = errors[i][np.isfinite(errors[i])]
         median = float(np.median(e))
         spread = float(percentile_spread(e, [50.0], resamples=resamples, seed=seed)[0])
@@ -328,7 +328,7 @@ def decay_elasticities(ds: xr.Dataset, zeta: float, *, neutral: float,
     whirl share) for ``p`` = zeta, beta and m_bar at every distinct parameter point of the
     law's runs (central differences of relative width ``2 step``); NaN where sigma is
     undefined on either side."""
-    share = float(ds.share.values.flat[0]) if "share" in ds.coords else 0.0
+    share = float(ds.whirl_share.values.flat[0]) if "whirl_share" in ds.coords else 0.0
     points = np.unique(np.stack([ds[k].values for k in ("m_bar", "eps_bar", "beta",
                                                         "omega_bar")], axis=1), axis=0)
     base = {"m_bar": points[:, 0], "eps_bar": points[:, 1], "zeta": np.full(len(points), zeta),
