@@ -10,7 +10,7 @@ from rotorvib.comparison import verdict
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, simulate
 from rotorvib.papers.b.optimise import balance_time_objective, ga_dataset, tune_balancer
-from rotorvib.pipeline.config_checks import study_problem
+from rotorvib.papers.b.config_checks import study_problem
 from rotorvib.papers.b.setup import RUN_PARAMETERS, Setup
 from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset, grid_dataset
 

@@ -1,6 +1,6 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
 from rotorvib.paper_values import paper_values_of
-from rotorvib.pipeline.config_checks import boundary_base
+from rotorvib.papers.b.config_checks import boundary_base
 
 B_SETUP = {
     key: B[key]

@@ -1,6 +1,6 @@
 """The work a balancer run may ask for, at most, and the count of its samples: what the engine
 refuses (:mod:`inputs`) and what the workflow checks in a configuration before any job
-(:mod:`rotorvib.pipeline.config_checks`), in one place.  Importing it loads no compiled code."""
+(:mod:`rotorvib.papers.b.config_checks`), in one place.  Importing it loads no compiled code."""
 
 from __future__ import annotations
 

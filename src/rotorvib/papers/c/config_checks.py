@@ -1,0 +1,62 @@
+"""Paper C's configuration checks beyond the schema (:func:`problems`), each named by its key
+within ``paper_c``; the workflow runs them when it reads the configuration, before any job
+(:mod:`rotorvib.pipeline.config_checks`, which writes the messages)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorvib.checks import seed_spread_problem, sobol_design_problem
+from rotorvib.methods.integrate import tolerance_problem
+
+
+def fig6_problems(c: dict) -> list[tuple[str, str]]:
+    """Paper C's Fig 6 claims compare curves of the mass-ratio family: each ratio they name
+    (``claims.fig6_mu``) must be one of ``mass_ratio_family.mu``."""
+    family = np.asarray(c["mass_ratio_family"]["mu"], float)
+    roles = c["claims"]["fig6_mu"]
+    return [("mass_ratio_family.mu", f"must contain {m:g}, the mass ratio of "
+                                     f"paper_c.claims.fig6_mu.{role} (Fig 6's claims compare it)")
+            for role, values in roles.items() for m in np.atleast_1d(values)
+            if not np.isclose(family, m).any()]
+
+
+def distance_problems(c: dict) -> list[tuple[str, str]]:
+    """The distance study moves both absorber sets of Table 2 by each offset: none may move a
+    set to the disk centre or through it."""
+    nearest = min(c["table2"]["d1"], c["table2"]["d2"])
+    lowest = min(c["distance_study"]["offsets"])
+    if nearest + lowest > 0:
+        return []
+    return [("distance_study.offsets", f"{lowest:g} m moves the set at {nearest:g} m "
+                                       "(paper_c.table2) to or through the disk centre; each "
+                                       f"offset must exceed {-nearest:g} m")]
+
+
+def spin_problems(c: dict) -> list[tuple[str, str]]:
+    """Paper C's spin study follows Table 2's absorber up to 99 % of its first spring loss,
+    sqrt(2 k / m) of a set: every machine speed the spin claim is evaluated at must lie below."""
+    t2 = c["table2"]
+    loss = min(np.sqrt(2 * t2[f"k{j}"] / t2[f"m{j}"]) for j in (1, 2)) * 30 / np.pi
+    speeds = {"spin.realistic_rpm": [c["spin"]["realistic_rpm"]],
+              "spin.alternative_rpm": c["spin"]["alternative_rpm"]}
+    return [(key, f"{rpm:g} rpm is beyond the spins followed, up to {0.99 * loss:.6g} rpm (99 % "
+                  "of Table 2's first spring loss sqrt(2k/m))")
+            for key, values in speeds.items() for rpm in values if rpm > 0.99 * loss]
+
+
+def problems(c: dict) -> list[tuple[str, str]]:
+    """Every problem of the ``paper_c`` section of a configuration that satisfies the schema,
+    as ``(key within paper_c, what is wrong)``: a Sobol design that cannot be run, a search
+    seed repeated among its spread seeds, a tolerance finer than double precision, a Fig 6
+    claim about a curve the mass-ratio family does not draw, a distance offset through the
+    disk centre, a machine speed beyond the absorbers' spring loss."""
+    found = []
+    if problem := sobol_design_problem(c["uncertainty"]["n_base"],
+                                       c["uncertainty"]["convergence"]):
+        found.append(("uncertainty", problem))
+    if problem := seed_spread_problem(c["broadband"]["nsga"], "paper_c.broadband.nsga"):
+        found.append(("broadband.nsga.spread_seeds", problem))
+    if problem := tolerance_problem(c["time_response"]["rtol"]):
+        found.append(("time_response.rtol", problem))
+    return found + fig6_problems(c) + distance_problems(c) + spin_problems(c)
