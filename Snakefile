@@ -11,9 +11,14 @@ configfile: f"{workflow.basedir}/config/config.yaml"
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/paper_a.smk"
-include: "workflow/rules/paper_b.smk"
-include: "workflow/rules/paper_c.smk"
+
+
+# Each paper of the configuration (PAPERS, common.smk) has its rules in its own file.
+for _paper in PAPERS:
+
+    include: f"workflow/rules/paper_{_paper}.smk"
+
+
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/comparison.smk"
 include: "workflow/rules/report.smk"

@@ -64,6 +64,11 @@ try:
 except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
+# The papers, from the configuration's paper_<p> sections (each has its rules in
+# workflow/rules/paper_<p>.smk and its package rotorvib.papers.<p>).
+PAPERS = sorted(
+    key.removeprefix("paper_") for key in config if key.startswith("paper_")
+)
 A, B, C = (config[f"paper_{paper}"] for paper in "abc")
 # the comparison's reading of the papers' words ("close" and its alternatives), shared by
 # every paper's claims (rotorvib.comparison.Close)

@@ -5,14 +5,12 @@
 rule comparison:
     input:
         paper_values=PAPER_VALUES,
-        reproduced=[
-            rules.a_reproduced_values.output[0],
-            rules.b_reproduced_values.output[0],
-            rules.c_reproduced_values.output[0],
-        ],
+        reproduced=[reproduced_file(paper) for paper in PAPERS],
+        # the papers whose rules analyse the numbers missed
         discrepancies=[
-            rules.b_discrepancies.output[0],
-            rules.c_discrepancies.output[0],
+            getattr(rules, name).output[0]
+            for name in (f"{paper}_discrepancies" for paper in PAPERS)
+            if name in {rule.name for rule in workflow.rules}
         ],
     output:
         csv=report_table(
