@@ -50,7 +50,8 @@ def write_api(app):
     modules = sorted(m.name for m in pkgutil.walk_packages(rotorvib.__path__, "rotorvib."))
     order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers", "rotorvib.paper_values",
              "rotorvib.choices", "rotorvib.comparison", "rotorvib.reproduced_csv",
-             "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.io", "rotorvib.pipeline"]
+             "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.config_problems",
+             "rotorvib.io", "rotorvib.pipeline"]
     modules.sort(key=lambda m: (next(i for i, p in enumerate(order) if m.startswith(p)), m))
     text = "".join(f"## `{m}`\n\n```{{eval-rst}}\n.. automodule:: {m}\n   :members:\n```\n\n"
                    for m in modules)

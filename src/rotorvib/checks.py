@@ -110,15 +110,6 @@ def instance(name: str, value, kind: type, *, optional: bool = False):
                      f"{' or None' if optional else ''}")
 
 
-def seed_spread_problem(search: dict, name: str) -> str | None:
-    """Why a seeded search's ``spread_seeds`` cannot give its spread (None if they can): one of
-    them is its ``seed``, whose result would count twice (``name``: its config key)."""
-    if search["seed"] in search["spread_seeds"]:
-        return (f"must not contain {name}.seed ({search['seed']}), whose result it would count "
-                "twice")
-    return None
-
-
 def sobol_design_problem(n_base, convergence) -> str | None:
     """Why a Saltelli design of ``n_base`` base points, shown at the sizes ``convergence``,
     cannot be run (None if it can): every size a power of 2, none above ``n_base``."""

@@ -19,15 +19,6 @@ class IntegrationError(RuntimeError):
 RTOL_MIN = 100 * np.finfo(float).eps
 
 
-def tolerance_problem(rtol: float) -> str | None:
-    """Why a configured relative tolerance cannot be met (None if it can): below
-    :data:`RTOL_MIN`, which the integrators refuse."""
-    if rtol < RTOL_MIN:
-        return f"{rtol!r} is below {RTOL_MIN:.3g}, the least relative error double precision " \
-               "can deliver"
-    return None
-
-
 def check_tolerances(rtol: float, atol: float) -> None:
     """Raise ``ValueError`` naming ``rtol`` or ``atol`` unless ``RTOL_MIN <= rtol < 1`` and
     ``atol >= 0``, both finite."""

@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from rotorvib.checks import seed_spread_problem, sobol_design_problem
-from rotorvib.methods.integrate import tolerance_problem
+from rotorvib.checks import sobol_design_problem
+from rotorvib.config_problems import seed_spread_problem, tolerance_problem
 from rotorvib.models.balancer.limits import radians_problem, samples_problem
 
 #: Chosen: the most run-ups one grid study of paper B may ask for. Every job of a study (each

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorvib.checks import seed_spread_problem, sobol_design_problem
-from rotorvib.methods.integrate import tolerance_problem
+from rotorvib.checks import sobol_design_problem
+from rotorvib.config_problems import seed_spread_problem, tolerance_problem
 
 
 def fig6_problems(c: dict) -> list[tuple[str, str]]:
