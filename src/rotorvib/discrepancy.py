@@ -31,6 +31,7 @@ import xarray as xr
 from rotorvib.comparison import MATCH_TOL, relative_error, verdict
 from rotorvib.io.coords import label_coord, labels
 from rotorvib.io.tables import write_table
+from rotorvib.paper_values import decimals
 
 KINDS = ("definition", "variant", "parameter slip", "unit of the result", "rounding")
 REPRODUCES_WITHIN = MATCH_TOL
@@ -105,13 +106,6 @@ def misses(paper_values: list[dict], reproduced) -> dict[str, tuple[float, str]]
             if v in MISSES:
                 out[r.quantity] = (printed[r.quantity], v)
     return out
-
-
-def decimals(text: str) -> int:
-    """Decimals of a printed number: ``"9.04"`` -> 2, ``"4"`` -> 0, ``"7.5e-4"`` -> 5."""
-    mantissa, _, exponent = text.strip().lower().partition("e")
-    places = len(mantissa.partition(".")[2])
-    return max(0, places - int(exponent or 0))
 
 
 def unit_factors(unit: str) -> dict[str, float]:

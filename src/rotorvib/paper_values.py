@@ -49,3 +49,10 @@ def paper_value_texts_of(path: str | Path, paper: str) -> dict[str, str]:
     """``{quantity: value as printed}`` of one paper's numbers (its digits tell its precision)."""
     return {row["quantity"]: row["value_text"] for row in read_paper_values(path)
             if row["paper"] == paper and row["value"] is not None}
+
+
+def decimals(text: str) -> int:
+    """Decimals of a printed number: ``"9.04"`` -> 2, ``"4"`` -> 0, ``"7.5e-4"`` -> 5."""
+    mantissa, _, exponent = text.strip().lower().partition("e")
+    places = len(mantissa.partition(".")[2])
+    return max(0, places - int(exponent or 0))

@@ -23,9 +23,9 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.choices import VARIANT_JOIN
-
 from rotorvib.comparison import MATCH_TOL, Margin, Reproduced
 from rotorvib.io.coords import label_coord, labels
+from rotorvib.paper_values import decimals
 from rotorvib.papers.b.choices import R_CHOICE, kinematics_choice
 from rotorvib.papers.b.setup import KINEMATICS_LONG_NAME, Setup, dataset_attrs, parameter_coord
 from rotorvib.papers.b.studies import grid_dataset
@@ -57,9 +57,7 @@ class TimeCase:
 def printed_tolerance(text: str) -> float:
     """``tol`` of the module docstring for a value printed as ``text`` (e.g. ``"4.70"``:
     max(0.047, 0.005); ``"4"``: 0.5)."""
-    value = float(text)
-    digits = len(text.split(".")[1]) if "." in text else 0
-    return max(MATCH_TOL * abs(value), 0.5 * 10.0 ** -digits)
+    return max(MATCH_TOL * abs(float(text)), 0.5 * 10.0 ** -decimals(text))
 
 
 def printed_cases(paper_b: dict, printed: dict[str, str]) -> list[TimeCase]:
