@@ -12,18 +12,25 @@ from rotorvib.models.balancer.parameters import paper_b_groups
 from rotorvib.papers.b.setup import dataset_attrs
 
 
+def _where_balanced(m_bar, eps_bar, zeta, beta, omega_bar, n: int):
+    """Paper A's groups (``paper_b_groups``) at the points where a balanced state exists
+    (rho = m_bar/eps_bar >= 1/2, eq. 34): the broadcast shape, the mask of those points, their
+    groups and ``s = sqrt(1 + n m_bar)``, by which eigenvalues on the total-mass scale exceed
+    paper B's."""
+    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    exists = rho >= 0.5
+    s = np.sqrt(1 + n * np.broadcast_to(m_bar, mu.shape)[exists])
+    return mu.shape, exists, tuple(g[exists] for g in (mu, rho, z, b, om)), s
+
+
 def balanced_eigenvalues(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2) -> np.ndarray:
     """The eight eigenvalues of the balanced state r* = 0 (eqs 27-32) in units of paper B's
     omega_n, shape ``broadcast shape + (8,)``; NaN where no balanced state exists
-    (rho = m_bar/eps_bar < 1/2, eq. 34).  Paper A's groups (``paper_b_groups``) give them on the
-    total-mass scale, ``sqrt(1 + n m_bar)`` times paper B's."""
-    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
-    eig = np.full(mu.shape + (8,), np.nan, dtype=complex)
-    exists = rho >= 0.5
+    (rho = m_bar/eps_bar < 1/2, eq. 34)."""
+    shape, exists, groups, s = _where_balanced(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    eig = np.full(shape + (8,), np.nan, dtype=complex)
     if exists.any():
-        s = np.sqrt(1 + n * np.broadcast_to(m_bar, mu.shape)[exists])
-        eig[exists] = stability.eigenvalues(mu[exists], rho[exists], z[exists], b[exists],
-                                            om[exists]) / s[:, None]
+        eig[exists] = stability.eigenvalues(*groups) / s[:, None]
     return eig
 
 
@@ -32,14 +39,11 @@ def balanced_modes(m_bar, eps_bar, zeta, beta, omega_bar, n: int = 2):
     of the whirl: ``|(u, v)| / |(u, v, a1, a2)|`` of its eigenvector's positions (the rotor's
     centre against the balls' angles, in units of R and radians), 1 for a mode of the rotor
     alone and near 0 for a mode of the balls alone; NaN where no balanced state exists."""
-    mu, rho, z, b, om = paper_b_groups(m_bar, eps_bar, zeta, beta, omega_bar, n)
-    eig = np.full(mu.shape + (8,), np.nan, dtype=complex)
-    share = np.full(mu.shape + (8,), np.nan)
-    exists = rho >= 0.5
+    shape, exists, groups, s = _where_balanced(m_bar, eps_bar, zeta, beta, omega_bar, n)
+    eig = np.full(shape + (8,), np.nan, dtype=complex)
+    share = np.full(shape + (8,), np.nan)
     if exists.any():
-        s = np.sqrt(1 + n * np.broadcast_to(m_bar, mu.shape)[exists])
-        lam, vectors = np.linalg.eig(stability.jacobian(mu[exists], rho[exists], z[exists],
-                                                        b[exists], om[exists]))
+        lam, vectors = np.linalg.eig(stability.jacobian(*groups))
         eig[exists] = lam / s[:, None]
         positions = np.linalg.norm(vectors[..., :4, :], axis=-2)
         share[exists] = np.linalg.norm(vectors[..., :2, :], axis=-2) / positions
