@@ -13,6 +13,12 @@ configfile: f"{workflow.basedir}/config/config.yaml"
 include: "workflow/rules/common.smk"
 
 
+# The shard wildcards of every batch study's shard rule (shard_file, common.smk): shard k of n.
+wildcard_constraints:
+    shard=r"\d+",
+    shards=r"\d+",
+
+
 # Each paper of the configuration (PAPERS, common.smk) has its rules in its own file.
 for _paper in PAPERS:
 

@@ -34,11 +34,11 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorvib.pipeline.config import load_yaml, validate_config
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.analysers import METRICS
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch
 from rotorvib.papers.b.setup import Setup
+from rotorvib.pipeline.config import load_yaml, validate_config
 
 CONFIG = validate_config(load_yaml("config/config.yaml"), load_yaml("config/schema.yaml"))
 B = CONFIG["paper_b"]

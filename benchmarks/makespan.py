@@ -9,7 +9,7 @@ joins each job's outputs, links a job to the jobs that made its inputs, and prin
   cores can shorten, and its share of the total;
 - the simulated makespan on 2, 4, 8, 16 and 64 cores (or ``--cores``): jobs started as their
   inputs are made, longest remaining chain first, with the durations measured; a batch job (a
-  rule declaring ``threads: BATCH_THREADS``, found in the rule files) gets half the cores, as
+  rule declaring ``threads: BATCH_THREADS``, found in the rule files, :func:`batch_rules`) gets half the cores, as
   the workflow gives it, and takes ``T (s + (1 - s) / threads)`` for its recorded time ``T``
   (Amdahl's law, ``s`` the serial share, ``--serial``), every other job one core.
 
@@ -20,7 +20,7 @@ one thread, as recorded)::
 
 The serial share of a batch job is measured by running it with one and with two threads
 (``snakemake -j2 --forcerun b_ga --set-threads b_ga=1`` and ``=2``, then ``s = 2 T2 / T1 -
-1`` from the two ``results/benchmarks/b_ga.tsv``); docs/performance.md keeps the figure. The
+1`` from the two ``results/benchmarks/b_ga.tsv``); docs/developer.md keeps the figure. The
 durations are the run's own (on the machine and with the ``-j`` it had): a job that shared its
 core ran longer than it would alone, so the simulation is an upper bound where the run was
 crowded. The README quotes no timing: this script measures it on the machine at hand.
@@ -143,17 +143,15 @@ def critical_chain(jobs: list[Job]) -> tuple[float, list[Job]]:
 
 
 def batch_rules(rules: Path = RULES) -> set[str]:
-    """The rules that declare ``threads: BATCH_THREADS`` in the rule files, and those that
-    use one of them (``use rule X as Y with:`` inherits its threads)."""
+    """The rules that declare ``threads: BATCH_THREADS`` in the rule files: each ``rule X:``
+    block that says so, and both rules of each batch study of paper B's table
+    (``"X": batch_study(...)``, its rules ``X`` and ``X_shard``, paper_b.smk)."""
     text = "".join(p.read_text() for p in sorted(rules.glob("*.smk")))
-    blocks = re.split(r"^(?=rule |use rule )", text, flags=re.M)
+    blocks = re.split(r"^(?=\S)", text, flags=re.M)      # each top-level statement
     batch = {re.match(r"rule (\w+)", b).group(1) for b in blocks
              if b.startswith("rule ") and "threads: BATCH_THREADS" in b}
-    for b in blocks:
-        if m := re.match(r"use rule (\w+) as (\w+)", b):
-            if m.group(1) in batch:
-                batch.add(m.group(2))
-    return batch
+    studies = re.findall(r'^\s+"(\w+)": batch_study\(', text, flags=re.M)
+    return batch | {name + suffix for name in studies for suffix in ("", "_shard")}
 
 
 def on_cores(jobs: list[Job], cores: int, batch: set[str], serial: float) -> list[Job]:

@@ -40,6 +40,28 @@ def write_papers(app):
     _write(ROOT / "docs/_generated/papers.md", text)
 
 
+def write_outputs_table(app):
+    """docs/_generated/outputs.md: where each paper item lands, from the papers' output
+    declarations and the paper configuration's plan (``snakemake --summary``: each output file
+    and its rule; rotorvib.pipeline.outputs_table), on every build."""
+    import importlib
+    import subprocess
+    import sys
+
+    from rotorvib.outputs import PROJECT_TABLES
+    from rotorvib.pipeline.outputs_table import outputs_table, producers
+
+    plan = subprocess.run([sys.executable, "-m", "snakemake", "--summary", "--nolock"],
+                          cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    config = load_yaml(ROOT / "config/config.yaml")
+    papers = {key.removeprefix("paper_"): section for key, section in config.items()
+              if key.startswith("paper_")}
+    declared = {p: importlib.import_module(f"rotorvib.papers.{p}.outputs") for p in papers}
+    _write(ROOT / "docs/_generated/outputs.md", outputs_table(
+        producers(plan), {p: m.figures(papers[p]) for p, m in declared.items()},
+        {**{p: m.tables(papers[p]) for p, m in declared.items()}, "all": PROJECT_TABLES}))
+
+
 def write_api(app):
     """docs/_generated/api.md: every module of the package with its public members, grouped by
     package in the order of the layers (a module added to the package appears by itself)."""
@@ -50,7 +72,8 @@ def write_api(app):
     modules = sorted(m.name for m in pkgutil.walk_packages(rotorvib.__path__, "rotorvib."))
     order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers", "rotorvib.paper_values",
              "rotorvib.choices", "rotorvib.comparison", "rotorvib.reproduced_csv",
-             "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.config_problems",
+             "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.outputs",
+             "rotorvib.config_problems",
              "rotorvib.io", "rotorvib.pipeline"]
     modules.sort(key=lambda m: (next(i for i, p in enumerate(order) if m.startswith(p)), m))
     text = "".join(f"## `{m}`\n\n```{{eval-rst}}\n.. automodule:: {m}\n   :members:\n```\n\n"
@@ -68,3 +91,4 @@ def setup(app):
     app.connect("builder-inited", write_configuration_reference)
     app.connect("builder-inited", write_papers)
     app.connect("builder-inited", write_api)
+    app.connect("builder-inited", write_outputs_table)

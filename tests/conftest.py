@@ -1,14 +1,15 @@
 """Shared fixtures: paper C's rotor and Table 2 from the repository's configuration."""
 
+import dataclasses
 import os
 from functools import cache
 from pathlib import Path
 
 import pytest
 
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.pipeline.config import load_yaml, validate_config
 from rotorvib.pipeline.fingerprint import import_closure
-from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The module of the balancer's compiled integrators (tests/workflow_runs.compile_the_engine).
@@ -77,6 +78,16 @@ def run_dir(runs) -> Path:
 def config():
     return validate_config(load_yaml(ROOT / "config/config.yaml"),
                            load_yaml(ROOT / "config/schema.yaml"))
+
+
+@pytest.fixture(scope="session")
+def setup(config):
+    """Paper B's setup from the configuration, with 8 s runs (every run the tests of paper B
+    make with it balances)."""
+    from rotorvib.papers.b.setup import Setup
+
+    s = Setup.from_paper_b(config["paper_b"])
+    return dataclasses.replace(s, criterion=dataclasses.replace(s.criterion, t_end=8.0))
 
 
 @pytest.fixture(scope="session")

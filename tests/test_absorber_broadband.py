@@ -7,14 +7,24 @@ import numpy as np
 import pytest
 
 from rotorvib.methods.ga import ParetoFront
-from rotorvib.models.absorber.frequency_response import (dimensionless_amplitude,
-                                                         natural_frequencies, steady_state)
+from rotorvib.models.absorber.frequency_response import (
+    dimensionless_amplitude,
+    natural_frequencies,
+    rotor_peak,
+    steady_state,
+)
 from rotorvib.models.absorber.parameters import AbsorberSet, dual_from_vector, dual_to_vector
-from rotorvib.models.absorber.frequency_response import rotor_peak
 from rotorvib.models.absorber.tuning import den_hartog_single
-from rotorvib.papers.c.broadband import (BAND_CHUNK, NoDesignAtMass, added_mass, band_peak,
-                                         broadband_front, free_spring_dual, pick_at_mass,
-                                         tuned_mass_floor)
+from rotorvib.papers.c.broadband import (
+    BAND_CHUNK,
+    NoDesignAtMass,
+    added_mass,
+    band_peak,
+    broadband_front,
+    free_spring_dual,
+    pick_at_mass,
+    tuned_mass_floor,
+)
 
 W = np.linspace(0.7, 1.3, 241)
 

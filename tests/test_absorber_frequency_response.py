@@ -3,12 +3,21 @@
 import numpy as np
 import pytest
 
-from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
-                                                         dimensionless_amplitude, matrices,
-                                                         natural_frequencies, rotor_peak,
-                                                         steady_state, theta_eq20)
-from rotorvib.models.absorber.parameters import (AbsorberSet, dual_to_vector, effective_mass_ratio,
-                                                 undamped)
+from rotorvib.models.absorber.frequency_response import (
+    bare_rotor_amplitude,
+    dimensionless_amplitude,
+    matrices,
+    natural_frequencies,
+    rotor_peak,
+    steady_state,
+    theta_eq20,
+)
+from rotorvib.models.absorber.parameters import (
+    AbsorberSet,
+    dual_to_vector,
+    effective_mass_ratio,
+    undamped,
+)
 from rotorvib.models.absorber.tuning import den_hartog_single, mass_ratio_family
 
 W = np.concatenate([np.linspace(0.5, 0.99, 50), np.linspace(1.01, 1.5, 50)])

@@ -7,8 +7,12 @@ import pytest
 
 from rotorvib.methods.integrate import IntegrationError, integrate
 from rotorvib.models.absorber.frequency_response import matrices, steady_state
-from rotorvib.models.absorber.time_response import (linear_response, rhs_linear, rhs_nonlinear,
-                                                    simulate)
+from rotorvib.models.absorber.time_response import (
+    linear_response,
+    rhs_linear,
+    rhs_nonlinear,
+    simulate,
+)
 
 
 def test_bare_rotor_at_resonance_matches_the_exact_solution(rotor):

@@ -7,8 +7,14 @@ import time
 
 import pytest
 
-from rotorvib.pipeline.archive import (MANIFEST, README, make_archive, restore_archive,
-                                       sha256_file, verify_archive)
+from rotorvib.pipeline.archive import (
+    MANIFEST,
+    README,
+    make_archive,
+    restore_archive,
+    sha256_file,
+    verify_archive,
+)
 from rotorvib.pipeline.archive import main as archive_main
 
 

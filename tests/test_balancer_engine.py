@@ -10,15 +10,26 @@ import pytest
 from numba import njit
 from scipy.integrate import ode, solve_ivp
 
-from rotorvib.models.balancer import dop853, engine, settling, simulate
-from rotorvib.models.balancer.borrowed import borrowed
-from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
-                                                 fixed_parameters, fixed_state, rotating_parameters)
 from conftest import ROOT
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
 from rotorvib.methods.integrate import IntegrationError
-from rotorvib.models.balancer.simulate import (MAX_STEPS, BalanceCriterion, check_batch, run,
-                                               run_batch)
+from rotorvib.models.balancer import dop853, engine, settling, simulate
+from rotorvib.models.balancer.borrowed import borrowed
+from rotorvib.models.balancer.parameters import (
+    Balancer,
+    Dimensionless,
+    SpeedProfile,
+    fixed_parameters,
+    fixed_state,
+    rotating_parameters,
+)
+from rotorvib.models.balancer.simulate import (
+    MAX_STEPS,
+    BalanceCriterion,
+    check_batch,
+    run,
+    run_batch,
+)
 
 R_THR, F_THR = 1e-4, 1.0
 

@@ -14,10 +14,13 @@ from rotorvib.methods.numba_cache import LOCK, MANIFEST, compile_lock, drop_if_s
 from rotorvib.models.balancer import engine, settling
 from rotorvib.models.balancer.certificates import balanced_jacobian, certificates
 from rotorvib.models.balancer.kinematics import disk_kinematics
-from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
-                                                 fixed_state)
-from rotorvib.models.balancer.simulate import (BalanceCriterion, metric, run, run_batch,
-                                               simulate)
+from rotorvib.models.balancer.parameters import (
+    Balancer,
+    SpeedProfile,
+    fixed_parameters,
+    fixed_state,
+)
+from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch, simulate
 from rotorvib.models.balancer.stability import jacobian
 
 RULE = settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9)

@@ -17,11 +17,11 @@ import pytest
 import sympy as sp
 
 from conftest import ROOT
-from rotorvib.pipeline import fingerprint
 from rotorvib.io import cache_files
 from rotorvib.io.cache_files import read_checked, write_checked
 from rotorvib.methods import codegen, numba_cache
 from rotorvib.methods.numba_cache import MANIFEST, compile_lock, drop_if_stale, record
+from rotorvib.pipeline import fingerprint
 
 # --- checked files -----------------------------------------------------------------------------
 

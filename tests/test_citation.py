@@ -48,3 +48,21 @@ def test_citation_agrees_with_the_package():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
     assert cff["version"] == project["version"]
     assert cff["license"] == project["license"]["text"]
+
+
+def test_the_release_is_the_changelogs_newest_and_every_paper_is_cited():
+    """CITATION.cff's version and date are the newest entry of docs/changelog.md, and its
+    references are the papers of data/papers.yaml, by title."""
+    import re
+
+    cff = yaml.safe_load((ROOT / "CITATION.cff").read_text())
+    newest = re.search(r"^## (\S+) — (\d{4}-\d{2}-\d{2})$",
+                       (ROOT / "docs/changelog.md").read_text(), re.M)
+    assert (cff["version"], str(cff["date-released"])) == newest.groups()
+    papers = yaml.safe_load((ROOT / "data/papers.yaml").read_text())
+
+    def words(text):
+        return " ".join(text.split()).lower()
+
+    assert sorted(words(r["title"]) for r in cff["references"]) == sorted(
+        words(p["title"]) for p in papers.values())

@@ -2,8 +2,17 @@ import numpy as np
 import pytest
 
 from rotorvib.choices import NO_CHOICE
-
-from rotorvib.comparison import build_table, claim_verdict, Margin, margin_text, merge_variants, Reproduced, totals, verdict, with_findings
+from rotorvib.comparison import (
+    Margin,
+    Reproduced,
+    build_table,
+    claim_verdict,
+    margin_text,
+    merge_variants,
+    totals,
+    verdict,
+    with_findings,
+)
 from rotorvib.reproduced_csv import read_reproduced, write_reproduced
 
 HOLDS, FAILS = Margin(0.2, 0.01, "s", "test"), Margin(-0.2, 0.01, "s", "test")
@@ -201,7 +210,7 @@ def test_an_optimum_the_grid_cannot_resolve_is_undetermined():
 
 
 def test_a_calibrated_row_is_counted_apart_never_as_evidence(tmp_path):
-    from rotorvib.comparison import CALIBRATED, build_table, Margin, Reproduced, totals
+    from rotorvib.comparison import CALIBRATED, Margin, Reproduced, build_table, totals
 
     values = [{"paper": "B", "item": "Table 2", "quantity": "q", "unit": "", "value": None,
                "source": "theory", "read_off_figure": "no", "claim": "c", "quote_where": "",
@@ -221,7 +230,7 @@ def test_moving_one_choice_flips_a_constructed_verdict():
     it DEPENDS on the choice, naming the value; the comparison's CSV carries the choice and
     what each alternative gave."""
     from rotorvib.choices import Close, under_choice
-    from rotorvib.comparison import build_table, Margin, Reproduced
+    from rotorvib.comparison import Margin, Reproduced, build_table
 
     off = 0.01005                             # the antiresonance's distance from resonance
 

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.pipeline.config import ConfigError, load_yaml, validate_config
 from rotorvib.pipeline import config_checks
+from rotorvib.pipeline.config import ConfigError, load_yaml, validate_config
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = load_yaml(ROOT / "config/schema.yaml")

@@ -7,9 +7,9 @@ import pytest
 import xarray as xr
 
 from conftest import cf_check
+from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
-from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 
 
 def _dataset():

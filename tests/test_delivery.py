@@ -17,11 +17,17 @@ import yaml
 import report_browser
 from conftest import ROOT
 from ro_crate import validate_crate
+from rotorvib.pipeline.archive import METADATA_DIR, digest_file, restore_archive, verify_archive
 from rotorvib.pipeline.report import numbers_of_item, numbers_of_name
-from rotorvib.pipeline.archive import (METADATA_DIR, digest_file, restore_archive,
-                                       verify_archive)
-from workflow_runs import (REDUCED, REDUCED_SHARDED, copy_repository, copy_run, job_records,
-                           planned_jobs, snakemake)
+from workflow_runs import (
+    REDUCED,
+    REDUCED_SHARDED,
+    copy_repository,
+    copy_run,
+    job_records,
+    planned_jobs,
+    snakemake,
+)
 
 pytestmark = pytest.mark.workflow
 

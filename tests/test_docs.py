@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT
+from rotorvib.pipeline.config import load_yaml
 from rotorvib.pipeline.fingerprint import import_closure
 
 DOCS = ROOT / "docs"
@@ -75,13 +76,14 @@ def test_the_layout_names_every_package_and_module():
 
 
 def test_following_fig8_names_the_files_and_modules_a_reader_crosses():
-    """The user guide's walk through paper B's Fig 8: its six files exist, and the modules it
+    """The user guide's walk through paper B's Fig 8: its seven files exist, and the modules it
     says the two jobs load are their scripts' import closure (what the code fingerprints
     follow)."""
     text = (DOCS / "user-guide.md").read_text()
     walk = text.split("**Following one figure**", 1)[1].split("\nA balance-time study", 1)[0]
     files = re.findall(r"^\d\. `([^`]+)`", walk, re.M)
-    assert len(files) == 6 and all((ROOT / f).is_file() for f in files), files
+    assert len(files) == 7 and all((ROOT / f).is_file() for f in files), files
+    assert "seven files" in walk
 
     def listed(label):
         line = re.search(rf"^- {label}: (.*)$", walk, re.M).group(1)
@@ -94,7 +96,10 @@ def test_following_fig8_names_the_files_and_modules_a_reader_crosses():
     assert listed("the study") == loaded(str(ROOT / "workflow/scripts/b_balance_study.py"))
     assert listed("the figure") == loaded(str(ROOT / "workflow/scripts/figures.py"),
                                           "rotorvib.papers.b.figures")
-    assert '"fig8": figure("balance_against", {"study": "balance_beta"}' in walk
+    assert '"fig8": figure("balance_against",\n   {"study": "balance_beta"}' in walk
+    from rotorvib.papers.b.outputs import figures
+    fig8 = figures(load_yaml(ROOT / "config/config.yaml")["paper_b"])["fig8"]
+    assert (fig8["function"], fig8["datasets"]) == ("balance_against", {"study": "balance_beta"})
 
 
 def test_every_page_fits_the_window_and_every_link_leads_somewhere(site, browser):
@@ -137,43 +142,38 @@ def test_every_public_module_function_and_class_has_a_docstring():
     assert not bare, bare
 
 
-def _expand(pattern: str) -> list[str]:
-    """A path of the user guide's outputs table with its braces expanded: ``fig{2..6}.png``,
-    ``stability_fig{2,3}.nc``."""
-    match = re.search(r"\{([^}]*)\}", pattern)
-    if not match:
-        return [pattern]
-    body = match.group(1)
-    if ".." in body:
-        lo, hi = body.split("..")
-        choices = [str(k) for k in range(int(lo), int(hi) + 1)]
-    else:
-        choices = body.split(",")
-    return [path for choice in choices
-            for path in _expand(pattern[:match.start()] + choice + pattern[match.end():])]
+def test_the_outputs_table_names_every_result_and_the_rules_that_make_it(run_dir):
+    """The user guide's table of where each paper item lands, written as the docs build writes
+    it (docs/conf.py) but for a reduced run (same outputs as the paper configuration): every
+    dataset and figure the run made is in it, every file it names exists, each row names the
+    rules that made its files (by the run's own job records) and every declared figure and
+    table has a row."""
+    from importlib import import_module
 
+    from rotorvib.outputs import PROJECT_TABLES
+    from rotorvib.pipeline.config import merge
+    from rotorvib.pipeline.outputs_table import outputs_table, producers
+    from workflow_runs import REDUCED, job_records, snakemake
 
-def test_the_outputs_table_names_every_result_and_real_rules(run_dir):
-    """The user guide's table of where each paper item lands, against a reduced run (same
-    outputs as the paper configuration): every dataset and figure the run made is in it, every
-    path it gives exists, and every rule it names is a rule of the workflow."""
-    from test_layout import workflow_rules
-
-    text = (DOCS / "user-guide.md").read_text()
-    table = text.split("## Where each paper item lands", 1)[1].split("\n\n", 2)[1]
-    rules, paths = set(), set()
-    for row in table.splitlines()[2:]:
-        item, named, outputs = (cell.strip() for cell in row.strip("|").split("|"))
-        rules |= set(re.findall(r"`(\w+)`", named))
-        paper = item[0].lower()
-        for path in re.findall(r"`([^`]+)`", outputs):
-            path = path.removeprefix("results/")
-            if path.startswith(("datasets/", "figures/", "tables/")):
-                path = f"paper_{paper}/{path}"      # C's rows: relative to results/paper_c/
-            paths |= set(_expand(path))
-    assert rules <= workflow_rules(), rules - workflow_rules()
-    made = {p.relative_to(run_dir / "results").as_posix()
+    plan = producers(snakemake(run_dir, "--summary", *REDUCED).stdout)
+    config = merge(load_yaml(ROOT / "config/config.yaml"),
+                   load_yaml(ROOT / "config/test/config.yaml"))
+    papers = {k.removeprefix("paper_"): v for k, v in config.items() if k.startswith("paper_")}
+    outputs = {p: import_module(f"rotorvib.papers.{p}.outputs") for p in papers}
+    figures = {p: m.figures(papers[p]) for p, m in outputs.items()}
+    tables = {**{p: m.tables(papers[p]) for p, m in outputs.items()}, "all": PROJECT_TABLES}
+    rows = [[cell.strip() for cell in re.split(r"(?<!\\)\|", row.strip("|"))]
+            for row in outputs_table(plan, figures, tables).splitlines()[2:]]
+    made_by = {f: r["rule"] for r in job_records(run_dir) for f in r["output"]}
+    named = set()
+    for _, _, _, rules, files in rows:
+        paths = re.findall(r"`([^`]+)`", files)
+        assert set(re.findall(r"`(\w+)`", rules)) == {made_by[f] for f in paths}, rules
+        named |= set(paths)
+    made = {p.relative_to(run_dir).as_posix()
             for kind in ("datasets", "figures") for ext in ("nc", "png")
             for p in (run_dir / "results").glob(f"paper_*/{kind}/*.{ext}")}
-    assert made - paths == set(), "results the table does not name"
-    assert {p for p in paths if not (run_dir / "results" / p).exists()} == set()
+    assert made - named == set(), "results the table does not name"
+    assert {p for p in named if not (run_dir / p).exists()} == set()
+    declared = sum(map(len, figures.values())) + sum(map(len, tables.values()))
+    assert len(rows) >= declared

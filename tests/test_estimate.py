@@ -10,27 +10,29 @@ from rotorvib.pipeline import estimate
 from workflow_runs import copy_run
 
 
-def _inputs(start, n):
-    return [(np.full(3, float(i)), np.zeros(2)) for i in range(start, start + n)]
+def _batch(start, n):
+    return np.arange(start, start + n, dtype=float)[:, None] * np.ones(3), np.zeros((n, 2))
 
 
 def test_the_counter_counts_samples_and_runs_only_small_batches():
-    """Every run-up counted; batches of at most ``computed`` go to the real runner, larger ones
-    get all-zero metrics; the sample is drawn from every batch, not the first only."""
+    """Every run-up counted; batches of at most ``computed`` go to the real batch API, larger
+    ones get all-zero metrics; the sample is drawn from every batch, not the first only, and
+    keeps each run's batch options (but the progress switch) to time it with."""
     real = []
 
-    def runner(setup, inputs, *, progress):
-        real.append(len(inputs))
-        return np.ones((len(inputs), N_METRICS))
+    def run_batch(form, params, y0s, criterion, **options):
+        real.append((len(params), options))
+        return np.ones((len(params), N_METRICS))
 
-    counter = estimate.RunCounter(runner, sample=50, computed=10, seed=1)
-    small = counter("setup", _inputs(0, 10))
-    large = counter("setup", _inputs(10, 5000))
-    assert real == [10] and np.all(small == 1)
+    counter = estimate.RunCounter(run_batch, sample=50, computed=10, seed=1)
+    small = counter(0, *_batch(0, 10), "criterion", rtol=1e-6, progress=True)
+    large = counter(0, *_batch(10, 5000), "criterion", rtol=1e-6, progress=False)
+    assert real == [(10, {"rtol": 1e-6, "progress": True})] and np.all(small == 1)
     assert large.shape == (5000, N_METRICS) and not large.any()
     assert (counter.runs, counter.counted, counter.batches) == (5010, 5000, 2)
     labels = sorted(int(p[0]) for _, p, _ in counter.kept)
     assert len(labels) == 50 and labels[-1] > 2500 and len(set(labels)) == 50
+    assert {batch for batch, _, _ in counter.kept} == {(0, "criterion", (("rtol", 1e-6),))}
 
 
 def test_counting_is_refused_outside_a_counting_pass(tmp_path):

@@ -5,8 +5,13 @@ import textwrap
 import pytest
 
 from rotorvib.pipeline import fingerprint as fingerprints
-from rotorvib.pipeline.fingerprint import (behaviour_digest, code_fingerprint, import_closure,
-                                     imported_names, normalised_source)
+from rotorvib.pipeline.fingerprint import (
+    behaviour_digest,
+    code_fingerprint,
+    import_closure,
+    imported_names,
+    normalised_source,
+)
 
 
 def write(root, name, text):

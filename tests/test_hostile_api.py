@@ -19,12 +19,16 @@ from hypothesis import strategies as st
 
 from rotorvib.methods.integrate import IntegrationError
 from rotorvib.models.balancer import engine
-from rotorvib.models.balancer.parameters import (Balancer, Dimensionless, SpeedProfile,
-                                                 fixed_parameters, fixed_state,
-                                                 rotating_parameters)
+from rotorvib.models.balancer.parameters import (
+    Balancer,
+    Dimensionless,
+    SpeedProfile,
+    fixed_parameters,
+    fixed_state,
+    rotating_parameters,
+)
 from rotorvib.models.balancer.settling import StopRule
-from rotorvib.models.balancer.simulate import (BalanceCriterion, metric, run, run_batch,
-                                               simulate)
+from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch, simulate
 
 B = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012, zeta=0.01, beta=2.0)
 PROFILE = SpeedProfile(200.0, "runup", t_ramp=0.02)

@@ -56,21 +56,36 @@ def test_modules_stay_small(name):
     assert len(MODULES[name].read_text().splitlines()) <= 430
 
 
-RULE_HEAD = re.compile(r"^(?:rule (\w+):|use rule \w+ as (\w+) with:)\n((?:[ #].*\n|\n)*)",
-                       re.M)
-#: Every rule of the workflow: (name, its text, whether written ``rule NAME:`` rather than
-#: ``use rule ... as NAME with:``, which inherits what it does not change)
+RULE_HEAD = re.compile(r"^rule (\w+):\n((?:[ #].*\n|\n)*)", re.M)
 RULES_TEXT = "\n".join(
     p.read_text() for p in sorted((SRC.parent / "workflow/rules").glob("*.smk"))) + "\n"
-RULE_BLOCKS = [(a or b, block, bool(a)) for a, b, block in RULE_HEAD.findall(RULES_TEXT)]
-#: ``use rule BASE as NAME with:``: NAME -> BASE
-USED_AS = {name: base for base, name in
-           re.findall(r"^use rule (\w+) as (\w+) with:", RULES_TEXT, re.M)}
+COMMON_TEXT = (SRC.parent / "workflow/rules/common.smk").read_text()
+
+
+def batch_blocks() -> dict[str, str]:
+    """Paper B's batch studies' rules, written once in a loop over its ``B_BATCH`` table
+    (paper_b.smk): for each study ``S``, rule ``S`` (where Snakemake runs) and ``S_shard`` (a
+    cluster job), each the loop's body with the study's priority (``batch_study``'s default
+    unless its entry gives one) and its placement."""
+    loop = re.search(r"^for _rule, _study in B_BATCH\.items\(\):\n((?:[ #].*\n|\n)*)",
+                     RULES_TEXT, re.M).group(1)
+    body = "".join(line[8:] + "\n" for line in loop.splitlines() if line.startswith(" " * 12))
+    default = re.search(r"^    priority=(\w+),$", COMMON_TEXT, re.M).group(1)
+    blocks = {}
+    for name, entry in re.findall(r'^    "(\w+)": batch_study\(\n((?:        .*\n)*)    \),$',
+                                  RULES_TEXT, re.M):
+        priority = re.search(r"^        priority=(\w+),$", entry, re.M)
+        own = body.replace('priority: _study["priority"]',
+                           f"priority: {priority.group(1) if priority else default}")
+        blocks[name] = own.replace("localrule: not _sharded", "localrule: True")
+        blocks[f"{name}_shard"] = own.replace("    localrule: not _sharded\n", "")
+    return blocks
 
 
 def rule_blocks() -> dict[str, str]:
-    """Every rule of the workflow (``rule X:`` and ``use rule ... as X with:``): its text."""
-    return {name: block for name, block, _ in RULE_BLOCKS}
+    """Every rule of the workflow written with a name (``rule X:``, and paper B's batch
+    studies): its text. The figure rules, named in a loop (figures.smk), are not among them."""
+    return dict(RULE_HEAD.findall(RULES_TEXT)) | batch_blocks()
 
 
 def workflow_rules() -> set[str]:
@@ -95,7 +110,7 @@ def test_every_job_that_computes_starts_before_the_figures_and_tables():
     """Long jobs first (workflow/rules/common.smk): a rule whose CPU is measured (``benchmark:``:
     it computes a dataset or a check) declares a priority; one without (it draws or tabulates)
     only if it is on the longest chain."""
-    written = {name: block for name, block, own in RULE_BLOCKS if own}
+    written = rule_blocks()
     assert len(written) > 20
     for name, block in written.items():
         if "benchmark:" in block:
@@ -108,7 +123,7 @@ def test_every_job_the_longest_chain_waits_for_shares_its_priority(snakemake_her
     """The longest chain (workflow/rules/common.smk) starts as early as its inputs allow: every
     rule that paper B's discrepancy analysis needs, directly or through other rules (its
     ancestors in Snakemake's rule graph), declares the chain's priority or the first jobs'
-    (the genetic algorithm), or inherits it from the rule it uses; one with less waits behind
+    (the genetic algorithm); one with less waits behind
     other jobs and holds the chain back."""
     graph = snakemake_here("--rulegraph")
     assert graph.returncode == 0, graph.stderr
@@ -120,8 +135,7 @@ def test_every_job_the_longest_chain_waits_for_shares_its_priority(snakemake_her
         upstream |= frontier
     assert {"b_ga", "b_boundary", "b_ga_law", "b_reproduced_values"} <= upstream
     blocks = rule_blocks()
-    declared = {name: re.findall(r"^    priority: (\w+)$",
-                                 blocks[name] + blocks.get(USED_AS.get(name), ""), re.M)
+    declared = {name: re.findall(r"^    priority: (\w+)$", blocks[name], re.M)
                 for name in upstream}
     waiting = {name for name, priority in declared.items()
                if priority not in (["LONGEST_CHAIN"], ["BESIDE_THE_COMPILE"])}
@@ -146,3 +160,16 @@ def test_every_job_script_starts_as_a_job(path):
     after = body[starts[0]:]
     assert not [s for s in after if isinstance(s, (ast.Import, ast.ImportFrom))]
     assert "import_module" not in ast.unparse(ast.Module(body=after, type_ignores=[]))
+
+
+def test_the_tests_benchmarks_and_docs_import_in_order():
+    """ruff's import-order rules (isort) over the tests, the benchmarks and the docs'
+    configuration, as pyproject.toml configures them (the library and the job scripts keep
+    their own order: pyproject.toml says why)."""
+    import subprocess
+    import sys
+
+    root = SRC.parent
+    run = subprocess.run([sys.executable, "-m", "ruff", "check", "--select", "I", "tests",
+                          "benchmarks", "docs/conf.py"], cwd=root, capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr

@@ -69,3 +69,17 @@ def test_batch_jobs_take_half_the_cores_by_amdahls_law(metadata):
     found = batch_rules(ROOT / "workflow/rules")
     assert {"b_ga", "b_ga_shard", "b_table1_runs", "b_zeta_inversion"} <= found
     assert "comparison" not in found and "b_time_responses" not in found
+
+
+def test_the_slurm_profile_sets_the_threads_of_every_batch_rule_and_no_other():
+    """The SLURM profile's ``set-threads`` names exactly the rules that declare ``threads:
+    BATCH_THREADS`` (as this benchmark finds them in the rule files). Snakemake evaluates a
+    rule's threads again in a cluster job's own step, with that step's cores; only a
+    ``--set-threads`` crosses into it, so the profile carries them."""
+    import yaml
+
+    from benchmarks.makespan import batch_rules
+
+    profile = yaml.safe_load((ROOT / "workflow/profiles/slurm/config.yaml").read_text())
+    assert set(profile["set-threads"]) == batch_rules()
+    assert all(threads >= 2 for threads in profile["set-threads"].values())

@@ -4,11 +4,11 @@ folder, and run from another working directory (``--directory``). Every file the
 reads of its own (the schema, the papers' data, the Snakefile) is found beside its rules, not
 in the caller's folder."""
 
+import subprocess
+
 import yaml
 
 from workflow_runs import BIN, ROOT, copy_repository, environment
-
-import subprocess
 
 TARGET = "paper_c/datasets/ga.nc"
 

@@ -8,8 +8,14 @@ import pytest
 import xarray as xr
 
 from rotorvib.io.coords import label_coord
-from rotorvib.papers.b.ga_law import (NEIGHBOURS, envelope, fit_decay, ga_law_dataset,
-                                      ga_law_rows, split_change)
+from rotorvib.papers.b.ga_law import (
+    NEIGHBOURS,
+    envelope,
+    fit_decay,
+    ga_law_dataset,
+    ga_law_rows,
+    split_change,
+)
 from rotorvib.papers.b.setup import Setup
 
 R_THR = 1e-4

@@ -4,7 +4,6 @@ import numpy as np
 import pytest
 
 from rotorvib.choices import Close
-
 from rotorvib.comparison import claim_verdict
 from rotorvib.models.absorber.frequency_response import bare_rotor_amplitude
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber, dual_to_vector
@@ -72,8 +71,7 @@ def test_a_spinning_rotor_softens_the_absorbers_as_the_closed_form_says(config):
     10 %, at 1500 rpm 6 %: the verdict depends on the machine; the spring is lost at omega_a,
     and springs tuned at speed give the amplitude at rest."""
     from rotorvib.models.absorber.frequency_response import amplitude, matrices
-    from rotorvib.papers.c.spin import (detuning_limit, spin_dataset, spin_rows,
-                                        tuned_frequency)
+    from rotorvib.papers.c.spin import detuning_limit, spin_dataset, spin_rows, tuned_frequency
 
     c = config["paper_c"]
     rotor, table2 = Rotor(**c["rotor"]), dual_absorber(**c["table2"])

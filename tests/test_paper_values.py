@@ -7,8 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.comparison import build_table, Margin, Reproduced
-
+from rotorvib.comparison import Margin, Reproduced, build_table
 from rotorvib.paper_values import paper_says, read_paper_values
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -9,8 +9,14 @@ from matplotlib.layout_engine import ConstrainedLayoutEngine
 from PIL import Image
 
 from rotorvib.io.plotting import (
-    STYLE, drawn_key, figure, paper_vline, parameters_text, save,
-    sensitivity)
+    STYLE,
+    drawn_key,
+    figure,
+    paper_vline,
+    parameters_text,
+    save,
+    sensitivity,
+)
 
 
 def test_parameters_are_grouped_and_differences_named_by_dataset():

@@ -11,8 +11,15 @@ from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.papers.b.setup import LazyInputs, Setup
 from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset
 from rotorvib.papers.b.uncertainty import INPUTS, run_case
-from rotorvib.pipeline.shards import (GatheredRuns, RecordedRuns, ReplayedRuns, ShardRuns,
-                                      record_dataset, shard_dataset, shard_rows)
+from rotorvib.pipeline.shards import (
+    GatheredRuns,
+    RecordedRuns,
+    ReplayedRuns,
+    ShardRuns,
+    record_dataset,
+    shard_dataset,
+    shard_rows,
+)
 from workflow_runs import REDUCED_SHARDED, copy_run, job_counts, job_records, snakemake
 
 #: Every sharded study of paper B (the rules whose script calls run_study or run_search).

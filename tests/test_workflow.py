@@ -23,9 +23,19 @@ import rotorvib.comparison as comparison
 from conftest import ROOT, cf_check
 from forked_snakemake import ForkedSnakemake
 from rotorvib.paper_values import read_paper_values
-from workflow_runs import (BIN, REDUCED, copy_run, digests, environment, job_records,
-                           planned_outputs, run_block_jobs, snakemake, summary_rows,
-                           to_update)
+from workflow_runs import (
+    BIN,
+    REDUCED,
+    copy_run,
+    digests,
+    environment,
+    job_records,
+    planned_outputs,
+    run_block_jobs,
+    snakemake,
+    summary_rows,
+    to_update,
+)
 
 pytestmark = pytest.mark.workflow
 
@@ -258,7 +268,7 @@ def _figure_job_error(work: Path, *args) -> str:
     run = snakemake(work, "-j1", "-f", "results/paper_c/figures/fig6.png", *REDUCED, *args,
                     check=False)
     assert run.returncode != 0, run.stdout
-    log = (work / "results/logs/figures_c_mass_ratio.log").read_text()
+    log = (work / "results/logs/figures_c_fig6.log").read_text()
     error = next(line for line in log.splitlines() if "DatasetError" in line)
     assert error in run.stdout + run.stderr
     return log

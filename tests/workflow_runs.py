@@ -23,7 +23,12 @@ from pathlib import Path
 
 from conftest import ROOT
 from rotorvib.models.balancer import dop853, engine, settling
-from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, fixed_parameters, fixed_state
+from rotorvib.models.balancer.parameters import (
+    Balancer,
+    SpeedProfile,
+    fixed_parameters,
+    fixed_state,
+)
 from rotorvib.models.balancer.simulate import BalanceCriterion, run_batch
 
 BIN = Path(sys.executable).parent

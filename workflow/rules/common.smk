@@ -1,6 +1,7 @@
 # Helpers shared by all rules: configuration validation (before any job), paths, the figure
 # declaration, the code fingerprint every script rule receives and the configuration hash each
 # of its input datasets must carry.
+from importlib import import_module
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -17,7 +18,7 @@ from rotorvib.pipeline.strict_yaml import check_value
 from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
-from rotorvib.pipeline.report import entry_label, label, names_in, subcategory
+from rotorvib.pipeline.report import entry_label, names_in, subcategory
 from rotorvib.pipeline.snakemake_rules import (
     add_params,
     module_config_given,
@@ -69,15 +70,15 @@ except ConfigError as error:
 PAPERS = sorted(
     key.removeprefix("paper_") for key in config if key.startswith("paper_")
 )
-A, B, C = (config[f"paper_{paper}"] for paper in "abc")
 # the comparison's reading of the papers' words ("close" and its alternatives), shared by
 # every paper's claims (rotorvib.comparison.Close)
 CLOSE = config["comparison"]
 # Threads of a job that shares a batch of runs out over threads (paper B's batch studies,
 # rotorvib.models.balancer.simulate): half the cores Snakemake is given, so that -j2 runs two
 # single-threaded jobs side by side as it always did and a larger -j hands each batch job
-# several cores (the SLURM profile sets its own with set-threads). A command given no cores
-# (--rulegraph, --lint) plans with one.
+# several cores (the SLURM profile sets its own with set-threads, one entry for each rule that
+# declares these, tests/test_cluster.py). A command given no cores (--rulegraph, --lint) plans
+# with one.
 try:
     BATCH_THREADS = max(1, int(workflow.cores) // 2)
 except (WorkflowError, TypeError):
@@ -142,6 +143,30 @@ def shards_of(paper, name, shards):
     return files
 
 
+def batch_study(
+    name,
+    message,
+    params,
+    inputs=None,
+    wildcards=None,
+    runtime=30,
+    priority=LONGEST_CHAIN,
+):
+    """A batch study of paper B (its rules: paper_b.smk): its dataset ``name`` (with its
+    wildcards' patterns), its job's parameters and inputs, and its wall-time bound in minutes
+    (``runtime``); its log and benchmark are ``b_<name>``."""
+    return {
+        "dataset": name,
+        "name": f"b_{name}",
+        "message": message,
+        "params": params,
+        "inputs": inputs or {},
+        "wildcards": wildcards or {},
+        "runtime": runtime,
+        "priority": priority,
+    }
+
+
 def table(paper, name, ext):
     return f"{RESULTS_DIR}/paper_{paper}/tables/{name}.{ext}"
 
@@ -160,23 +185,19 @@ def benchmarks(name):
     return f"{RESULTS_DIR}/benchmarks/{name}.tsv"
 
 
-# Figures of each paper, filled by the paper's .smk and drawn by the figure jobs (figures.smk);
-# FIGURES[paper][name] names the drawing function of rotorvib.papers.<paper>.figures, the
-# datasets it reads (argument -> dataset name), what it shows (the first sentence of its
-# report caption, rotorvib.pipeline.report), the comparison items it shows beyond those its name
-# numbers ("Fig 8" for fig8) and its options.
-FIGURES = {}
+def paper_outputs(paper):
+    """The module that declares ``paper``'s outputs (rotorvib.papers.<paper>.outputs)."""
+    return import_module(f"rotorvib.papers.{paper}.outputs")
 
 
-def figure(function, datasets, shows, items=(), **options):
-    """A figure declaration: ``function(**datasets, paper=<paper's values>, **options)``."""
-    return {
-        "function": function,
-        "datasets": datasets,
-        "shows": shows,
-        "items": list(items),
-        "options": options,
-    }
+# Figures of each paper, as its package declares them (rotorvib.outputs.figure), drawn by the
+# figure jobs (figures.smk): FIGURES[paper][name] names the drawing function of
+# rotorvib.papers.<paper>.figures, the datasets it reads (argument -> dataset name), what it
+# shows (the first sentence of its report caption, rotorvib.pipeline.report), the comparison
+# items it shows beyond those its name numbers ("Fig 8" for fig8) and its options.
+FIGURES = {
+    paper: paper_outputs(paper).figures(config[f"paper_{paper}"]) for paper in PAPERS
+}
 
 
 def outputs_named(paper, name):
@@ -187,17 +208,25 @@ def outputs_named(paper, name):
     return sorted({name} | names_in(" ".join([declared["shows"], *declared["items"]])))
 
 
-# Tables shown in the report, filled by the papers' .smk: TABLES[paper][name] says what the
-# table shows, the comparison items beyond those its name numbers ("Table 2" for table2) and
-# where its CSV is.
-TABLES = {}
+# Tables shown in the report: TABLES[paper][name] says what the table shows, the comparison
+# items beyond those its name numbers ("Table 2" for table2) and where its CSV is; each paper's
+# as its package declares them (in its tables folder), the whole project's ("all") by
+# report_table.
+TABLES = {
+    paper: {
+        name: {**declared, "csv": table(paper, name, "csv")}
+        for name, declared in paper_outputs(paper)
+        .tables(config[f"paper_{paper}"])
+        .items()
+    }
+    for paper in PAPERS
+}
 
 
 def report_table(paper, name, shows, items=(), path=None):
-    """Declare table ``name`` of ``paper`` ("all" for the whole project), written as CSV to
-    ``path`` (by default the paper's tables folder), and return that path. Rule report_text
-    writes it as an HTML page, rule report_results shows that page in the report."""
-    path = path or table(paper, name, "csv")
+    """Declare table ``name`` of the whole project (``paper`` "all"), written as CSV to
+    ``path``, and return that path. Rule report_text writes it as an HTML page, rule
+    report_results shows that page in the report."""
     TABLES.setdefault(paper, {})[name] = {
         "shows": shows,
         "items": list(items),
@@ -273,10 +302,6 @@ def figure_groups():
     return groups
 
 
-# Final files of each paper, filled by the paper's .smk.
-RESULTS = {}
-
-
 def all_results():
     """Every final file: each paper's results, the comparison, the report's words and pages
     and the files it shows."""
@@ -324,19 +349,25 @@ def drawn_datasets(paper):
     }
 
 
-def results_of(paper, datasets=(), tables=()):
-    """Every final file of a paper: its figures, the datasets they draw from and
-    ``datasets`` (those no figure draws), tables (csv and md) and the reproduced values of its
-    claims."""
+def results_of(paper):
+    """Every final file of a paper: its figures, the datasets they draw from and those its
+    package declares no figure draws, its tables (csv and md) and notes (md) and the
+    reproduced values of its claims."""
+    declared = paper_outputs(paper)
     return (
         [figure_file(paper, name) for name in FIGURES[paper]]
         + [
             dataset(paper, name)
-            for name in sorted(drawn_datasets(paper) | set(datasets))
+            for name in sorted(drawn_datasets(paper) | set(declared.UNDRAWN_DATASETS))
         ]
-        + [table(paper, name, ext) for name in tables for ext in ("csv", "md")]
+        + [table(paper, name, ext) for name in TABLES[paper] for ext in ("csv", "md")]
+        + [table(paper, name, "md") for name in declared.NOTES]
         + [reproduced_file(paper)]
     )
+
+
+# Final files of each paper.
+RESULTS = {paper: results_of(paper) for paper in PAPERS}
 
 
 def add_code_fingerprints(rules):

@@ -1,5 +1,6 @@
 # The side-by-side table of every value the papers state against the reproduction, and the
-# discrepancy analysis of the numbers it misses.
+# discrepancy analysis of the numbers it misses (captions: rotorvib.outputs.PROJECT_TABLES).
+from rotorvib.outputs import PROJECT_TABLES
 
 
 rule comparison:
@@ -16,21 +17,15 @@ rule comparison:
         csv=report_table(
             "all",
             "comparison",
-            "Every value and claim the papers state (data/paper_values.csv) beside the "
-            "reproduced value, with the relative error, the verdict and the explanation "
-            "of each difference.",
             path=f"{RESULTS_DIR}/comparison.csv",
+            **PROJECT_TABLES["comparison"],
         ),
         md=f"{RESULTS_DIR}/comparison.md",
         discrepancies_csv=report_table(
             "all",
             "discrepancies",
-            "Each printed number the reproduction misses, tested against alternative "
-            "readings of the paper (definitions, variants, parameter slips, units, "
-            "rounding): the value each hypothesis gives and whether it reproduces the "
-            "printed one (within the MATCH tolerance); an inversion gives the single "
-            "parameter value that would.",
             path=f"{RESULTS_DIR}/discrepancies.csv",
+            **PROJECT_TABLES["discrepancies"],
         ),
         discrepancies_md=f"{RESULTS_DIR}/discrepancies.md",
     log:

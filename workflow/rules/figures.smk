@@ -4,8 +4,9 @@
 # any case, and a figure alone is still built or redrawn by naming its file. A figure reads
 # datasets only (and the papers' values); nothing is recomputed here.
 
+# A figure job is named for the first figure it draws (figures_b_fig8 draws Figs 8-10).
 for (_paper, _datasets), _names in figure_groups().items():
-    _rule = f"figures_{_paper}_{'_'.join(_datasets)}"
+    _rule = f"figures_{_paper}_{_names[0]}"
 
     rule:
         name:

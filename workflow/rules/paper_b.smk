@@ -1,270 +1,21 @@
-# Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up.
+# Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up. Its
+# figures, tables and the cases its jobs take are declared in rotorvib.papers.b.outputs.
 from rotorvib.paper_values import paper_values_of
+from rotorvib.papers.b import outputs as paper_b
 from rotorvib.papers.b.config_checks import boundary_base
 
-B_SETUP = {
-    key: B[key]
-    for key in ("machine", "initial_state", "speed", "balance", "marginal_growth")
-}
-# The planes of the stability boundaries (beyond the paper): each varies one parameter.
-B_PLANES = ("beta", "m_bar", "zeta")
-# The cases of the uncertainty study (beyond the paper), from their sections of the config.
-_T2, _F7 = B["table2"], B["time_responses"]["fig7"]
-B_UNCERTAIN = {
-    "table2": {
-        "name": "table2",
-        "title": "Table 2's optimum row",
-        "beta": _T2["cases"][-1][0],
-        "mass": _T2["cases"][-1][1],
-        "eps_bar": _T2["eps_bar"],
-        "phi0_deg": B["initial_conditions"][_T2["ic"]],
-        "speed": _T2["speed"],
-        "printed": {"force_max": "table2_fmax_3", "force_decay_time": "table2_decay_3"},
-    },
-    "fig7": {
-        "name": "fig7",
-        "title": "Fig 7",
-        "beta": _F7["beta"],
-        "mass": _F7["m_bar"] * B["machine"]["M"],
-        "eps_bar": _F7["eps_bar"],
-        "phi0_deg": _F7["phi0"],
-        "speed": None,
-        "printed": {"envelope_time": "fig7_balance_time"},
-    },
-    "table1": {
-        "name": "table1",
-        "title": f"Table 1's mean balance time at {_T2['speed']:g} rad/s",
-        "beta": B["table1"]["beta"],
-        "mass": _T2["cases"][-1][
-            1
-        ],  # the paper's optimum mass, also Table 1's at this speed
-        "eps_bar": B["table1"]["eps_bar"],
-        "ics": list(B["initial_conditions"].values()),
-        "speed": _T2["speed"],
-        # set against the paper's Table 1 mean where its claim row is at this speed (found
-        # by the configuration fuzzer: at another Table 2 speed there is none to compare with)
-        "printed": {
-            "balance_time": key
-            for key in [f"table1_mean_time_{_T2['speed']:g}"]
-            if f"{key}_within_uncertainty" in paper_values_of(PAPER_VALUES, "B")
-        },
-    },
-}
+B = config["paper_b"]
+B_SETUP = paper_b.setup(B)
+B_UNCERTAIN = paper_b.uncertain_cases(B, paper_values_of(PAPER_VALUES, "B"))
 B_RUNS = {
     "setup": B_SETUP,
     "kinematics": B["kinematics"],
     "ics": B["initial_conditions"],
 }
-
-FIGURES["b"] = {
-    "fig2": figure(
-        "stability_map",
-        {"st": "stability_fig2"},
-        "Stability of the balanced state in the (beta, speed) plane from the eigenvalues of "
-        "the linearised equations, with the critical speed.",
-    ),
-    "fig3": figure(
-        "stability_map",
-        {"st": "stability_fig3"},
-        "Stability of the balanced state in the (ball mass, speed) plane, with the critical "
-        "speed and the existence bound of the balanced state.",
-    ),
-    "fig4_5": figure(
-        "speed_profile",
-        {"tr": "time_responses"},
-        "The run-up speed profile of eq. (37) and its angular acceleration.",
-    ),
-    "fig6": figure(
-        "unbalanced_response",
-        {"tr": "time_responses"},
-        "Rotor amplitude r(t) without ball damping (beta = 0).",
-    ),
-    "fig7": figure(
-        "envelope_response",
-        {"tr": "time_responses"},
-        "Rotor amplitude r(t) of the paper's Fig 7 case with the envelope through its peaks, "
-        "the balance threshold and the balance time.",
-    ),
-    **{
-        f"fig{number}": figure(
-            "balance_against",
-            {"study": "balance_beta"},
-            f"Balance time against the ball-damping ratio beta for the three initial ball "
-            f"positions, at the {rank} unbalance eps_bar of the study.",
-            select={"eps_bar": index},
-        )
-        for index, (number, rank) in enumerate(
-            ((8, "first"), (9, "second"), (10, "third"))
-        )
-    },
-    "fig11": figure(
-        "responses",
-        {"tr": "time_responses"},
-        "Rotor amplitude r(t) for three ball-damping ratios beta.",
-        prefix="fig11",
-    ),
-    **{
-        f"fig{number}": figure(
-            "balance_against",
-            {"study": "balance_mass"},
-            f"Balance time against the ball mass m for the three initial ball positions, at "
-            f"the {rank} unbalance eps_bar of the study, with the optimum mass marked.",
-            select={"eps_bar": index},
-            marks={"m_opt": "optimum m"},
-        )
-        for index, (number, rank) in enumerate(
-            ((12, "first"), (13, "second"), (14, "third"))
-        )
-    },
-    "fig15": figure(
-        "responses",
-        {"tr": "time_responses"},
-        "Rotor amplitude r(t) for three ball masses.",
-        prefix="fig15",
-    ),
-    "fig16": figure(
-        "bearing_forces",
-        {"tr": "time_responses"},
-        "Bearing force against time for the three (beta, m) cases of Table 2.",
-    ),
-    "balance_eps_bar": figure(
-        "balance_against",
-        {"study": "balance_eps_bar"},
-        "Beyond the paper: balance time against the unbalance eps_bar for the three initial "
-        "ball positions.",
-    ),
-    "ga_convergence": figure(
-        "ga_convergence",
-        {"ga": "ga"},
-        "Convergence of the genetic algorithm of section 9 (best balance time per generation) "
-        "for each unbalance and initial condition, with its optimum (beta, m).",
-        items=["GA", "Section 9"],
-    ),
-    "calibration_R": figure(
-        "calibration",
-        {"forces": "forces"},
-        "Beyond the paper: the race radius R, which the paper does not state: the Table 2 "
-        "peak forces computed "
-        "over a range of R, and the R that fits them.",
-        items=["Table 2"],
-        R=B["machine"]["R"],
-    ),
-    "basin": figure(
-        "basin",
-        {"basin": "basin"},
-        "Beyond the paper: balance time over all initial positions of the two balls, with "
-        "the paper's three initial conditions marked.",
-        ics=B["initial_conditions"],
-    ),
-    "basin_distribution": figure(
-        "basin_distribution",
-        {"basin": "basin"},
-        "Beyond the paper: the balance time as a distribution over initial ball positions "
-        "placed at random (the basin map's uniform grid), with the share of positions "
-        "balanced by each time, and where the paper's three initial conditions fall in it.",
-        items=["Basin"],
-    ),
-    **{
-        f"uncertainty_{case}": figure(
-            "uncertainty",
-            {"unc": f"uncertainty_{case}"},
-            f"Beyond the paper: how sure {spec['title']} is. Sobol indices (first-order and "
-            "total, 95 % bootstrap intervals) of its peak bearing force, force decay time, "
-            "balance times and whether it balances, over the uncertain inputs (ranges in the "
-            "config), their convergence with the sample, and each quantity's distribution "
-            "with the printed value.",
-            items=[f"Uncertainty of {label(case)}"],
-        )
-        for case, spec in B_UNCERTAIN.items()
-    },
-    "boundaries": figure(
-        "boundaries",
-        {
-            "beta": "boundary_beta",
-            "m_bar": "boundary_m_bar",
-            "zeta": "boundary_zeta",
-            "st2": "stability_fig2",
-            "st3": "stability_fig3",
-        },
-        "Beyond the paper: the onset of stability of the balanced state traced by "
-        "pseudo-arclength continuation far beyond the grids of Figs 2-3, in (beta, omega_bar), "
-        "(m_bar, omega_bar) and (zeta, omega_bar) (stable to the right of the boundary), "
-        "with the critical speed and the grids' exact onsets.",
-        items=["Stability boundaries"],
-    ),
-    "ross_check": figure(
-        "ross_check",
-        {"ross": "ross_check"},
-        "Beyond the paper: paper B's rotor without balls (a Jeffcott rotor) by the closed form, "
-        "the package's engine (balls of negligible mass) and ROSS, the open rotordynamics code "
-        "(a stiff, nearly massless shaft with the disk at its middle): steady unbalance "
-        "response over the speed and the whirl through paper B's run-up. ROSS checks the "
-        "rotor's lateral dynamics, not the balls nor paper C's torsional model.",
-    ),
-    "balance_law": figure(
-        "balance_law",
-        {"law": "balance_law"},
-        "Beyond the paper: the balance time by the law t_pk + ln(F_pk / (k r_thr)) / sigma "
-        "(the peak bearing force of the critical-speed passage and the slowest decay rate of the "
-        "balanced state) against the integration, on every balanced run of the balance studies, "
-        "Tables 1-2 and the basin map, and the distribution of its relative error.",
-        items=["Balance-time law"],
-    ),
-    "zeta_inversion": figure(
-        "zeta_inversion",
-        {"zeta_inversion": "zeta_inversion"},
-        "Beyond the paper: the support damping zeta, which the paper states for Figs 2-3 and "
-        "8-14 only: the printed times of Fig 7, Table 1 and Table 2 rerun over zeta under each "
-        "kinematics and balance-time definition, and the zetas at which each is reproduced.",
-        items=["Support damping"],
-        zeta=B["machine"]["zeta"],
-    ),
-    "ga_law": figure(
-        "ga_law",
-        {"ga_law": "ga_law"},
-        "Beyond the paper: what the GA's optimum is. After the run-up the whirl decays on a "
-        "line of the log scale, r ~ A exp(-sigma (t - t_ramp)); around each GA optimum (beta "
-        "and m moved by the config's step) the change of the balance time splits into what the "
-        "passage leaves (the amplitude A) and how fast it decays (sigma).",
-        items=["GA optimum law"],
-    ),
-    **{
-        ("pareto" if kin == B["kinematics"][0] else f"pareto_{kin}"): figure(
-            "pareto",
-            {"pareto": f"pareto_{kin}"},
-            "Beyond the paper: the ball damping and mass chosen for two goals at once by "
-            "NSGA-II, the mean balance time and the worst peak bearing force over a fixed "
-            "sample of random initial ball positions, at Table 2's speed and eccentricity; "
-            f"Table 2's rows (the last is the paper's GA optimum) evaluated on the same sample; "
-            f"{kin} kinematics"
-            + (
-                "."
-                if kin == B["kinematics"][0]
-                else " (its comparison row is under the "
-                f"{B['kinematics'][0]} kinematics' figure)."
-            ),
-            # the comparison row, which quotes every kinematics, under the first figure only
-            items=["Pareto"] if kin == B["kinematics"][0] else [],
-        )
-        for kin in B["kinematics"]
-    },
-    "kinematics": figure(
-        "kinematics_shift",
-        {"beta": "balance_beta", "mass": "balance_mass"},
-        "Beyond the paper: how much the balance times of Figs 8-14 change between the "
-        "printed and the consistent kinematics, and the paper's conclusion that ball mass "
-        "matters more than damping.",
-        items=["Section 10"],
-    ),
+B_LAW_SOURCES = {
+    name: (dataset("b", name_of_dataset), fixed)
+    for name, (name_of_dataset, fixed) in paper_b.law_sources(B).items()
 }
-
-
-RESULTS["b"] = results_of(
-    "b",
-    # the datasets no figure draws (drawn_datasets adds the others)
-    ["discrepancies", "table1"],
-    ["derivation_checks", "table1", "table2"],
-) + [table("b", "kinematics", "md")]
 
 
 rule b_datasets:
@@ -277,16 +28,7 @@ rule b_datasets:
 
 rule b_derivation_checks:
     output:
-        csv=report_table(
-            "b",
-            "derivation_checks",
-            "Equations (2)-(34) re-derived with sympy from the kinetic energy (4), the "
-            "potential (5) and the Rayleigh function (6), each compared with the printed "
-            "one under three conventions for the disk angle: exactly w(t) t, the paper's "
-            "(the w'' t term dropped) and the consistent one (rate w). A FAIL row gives the "
-            "difference from the printed equation.",
-            path=table("b", "derivation_checks", "csv"),
-        ),
+        csv=table("b", "derivation_checks", "csv"),
         md=table("b", "derivation_checks", "md"),
     log:
         logs("b_derivation_checks"),
@@ -330,7 +72,7 @@ rule b_boundary:
     log:
         logs("b_boundary_{plane}"),
     wildcard_constraints:
-        plane="|".join(B_PLANES),
+        plane="|".join(paper_b.PLANES),
     priority: LONGEST_CHAIN
     # small eigenvalue problems along a curve: runs where Snakemake runs
     localrule: True
@@ -368,41 +110,105 @@ rule b_ross:
         "../scripts/b_ross.py"
 
 
-rule b_balance_study_shard:
-    output:
-        shard_file("b", "balance_{study}"),
-    log:
-        logs("b_balance_{study}.{shard}-of-{shards}"),
-    benchmark:
-        benchmarks("b_balance_{study}.{shard}-of-{shards}")
-    wildcard_constraints:
-        shard=r"\d+",
-        shards=r"\d+",
-        study="|".join(B["balance_studies"]),
-    priority: LONGEST_CHAIN
-    threads: BATCH_THREADS
-    resources:
-        runtime=30,
-    params:
-        **B_RUNS,
-        study=lambda wc: B["balance_studies"][wc.study],
-    message:
-        "Paper B: balance time against {wildcards.study}"
-    script:
-        "../scripts/b_balance_study.py"
+# Paper B's batch studies (rotorvib.pipeline.shards), by rule (its script is
+# workflow/scripts/<rule>.py): each its dataset, message, parameters, wall-time bound (minutes),
+# and any inputs or wildcards it has.
+B_BATCH = {
+    "b_balance_study": batch_study(
+        "balance_{study}",
+        "Paper B: balance time against {wildcards.study}",
+        {**B_RUNS, "study": lambda wc: B["balance_studies"][wc.study]},
+        wildcards={"study": "|".join(B["balance_studies"])},
+    ),
+    "b_ga": batch_study(
+        "ga",
+        "Paper B: genetic algorithm over ball damping and mass",
+        {**B_RUNS, "ga": B["ga"]},
+        runtime=60,
+        priority=BESIDE_THE_COMPILE,
+    ),
+    "b_table1_runs": batch_study(
+        "table1",
+        "Paper B: balance time over ball mass and operating speed (Table 1)",
+        {**B_RUNS, "table1": B["table1"]},
+    ),
+    "b_forces": batch_study(
+        "forces",
+        "Paper B: bearing forces of Table 2 against the race radius",
+        {**B_RUNS, "table2": B["table2"], "calibration": B["calibration"]},
+    ),
+    "b_uncertainty": batch_study(
+        "uncertainty_{case}",
+        "Paper B (beyond the paper): Sobol indices and bands of the case {wildcards.case}",
+        {
+            "setup": B_SETUP,
+            "kinematics": B["kinematics"][0],
+            # the case of Table 1 (a mean over the ICs) has its own, smaller sample
+            "uncertainty": lambda wc: B["uncertainty"]
+            | (
+                B["uncertainty"]["mean_over_ics"]
+                if "ics" in B_UNCERTAIN[wc.case]
+                else {}
+            ),
+            "case": lambda wc: B_UNCERTAIN[wc.case],
+        },
+        inputs={"forces": dataset("b", "forces"), "paper_values": PAPER_VALUES},
+        wildcards={"case": "|".join(B_UNCERTAIN)},
+    ),
+    "b_basin": batch_study(
+        "basin",
+        "Paper B: balance time over all initial ball positions",
+        {
+            "setup": B_SETUP,
+            "kinematics": B["kinematics"],
+            "basin": B["basin"],
+            "ics": B["initial_conditions"],
+        },
+        runtime=60,
+    ),
+}
 
 
-# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
-use rule b_balance_study_shard as b_balance_study with:
-    input:
-        shards=shards_of("b", "balance_{study}", B["shards"]),
-    output:
-        dataset("b", "balance_{study}"),
-    log:
-        logs("b_balance_{study}"),
-    benchmark:
-        benchmarks("b_balance_{study}")
-    localrule: True
+# Each batch study is two rules: its shards (`<rule>_shard`, shard k of n, sent to a cluster),
+# and the study itself, which runs it whole in one job (paper_b.shards = 1) or gathers its
+# shards byte-identical (rotorvib.pipeline.shards) where Snakemake runs.
+for _rule, _study in B_BATCH.items():
+    for _sharded in (True, False):
+
+        rule:
+            name:
+                f"{_rule}_shard" if _sharded else _rule
+            input:
+                **_study["inputs"],
+                **(
+                    {}
+                    if _sharded
+                    else {"shards": shards_of("b", _study["dataset"], B["shards"])}
+                ),
+            output:
+                (shard_file if _sharded else dataset)("b", _study["dataset"]),
+            log:
+                logs(_study["name"] + (".{shard}-of-{shards}" if _sharded else "")),
+            benchmark:
+                benchmarks(
+                    _study["name"] + (".{shard}-of-{shards}" if _sharded else "")
+                )
+            wildcard_constraints:
+                **_study["wildcards"],
+            priority: _study["priority"]
+            localrule: not _sharded
+            threads: BATCH_THREADS
+            resources:
+                runtime=_study["runtime"],
+            params:
+                **_study["params"],
+                # the script's name: a rule's script is read when its job runs, after the
+                # loop, so it is named through the rule's parameters, not a loop variable
+                script=_rule,
+            message:
+                _study["message"]
+            script:
+                "../scripts/{params.script}.py"
 
 
 rule b_time_responses:
@@ -422,167 +228,6 @@ rule b_time_responses:
         "Paper B: time responses of Figs 4-7, 11, 15 and 16"
     script:
         "../scripts/b_time_responses.py"
-
-
-rule b_ga_shard:
-    output:
-        shard_file("b", "ga"),
-    log:
-        logs("b_ga.{shard}-of-{shards}"),
-    benchmark:
-        benchmarks("b_ga.{shard}-of-{shards}")
-    wildcard_constraints:
-        shard=r"\d+",
-        shards=r"\d+",
-    priority: BESIDE_THE_COMPILE
-    threads: BATCH_THREADS
-    resources:
-        runtime=60,
-    params:
-        **B_RUNS,
-        ga=B["ga"],
-    message:
-        "Paper B: genetic algorithm over ball damping and mass"
-    script:
-        "../scripts/b_ga.py"
-
-
-# The whole GA in one job, or (paper_b.shards > 1) its searches' runs replayed from its shards.
-use rule b_ga_shard as b_ga with:
-    input:
-        shards=shards_of("b", "ga", B["shards"]),
-    output:
-        dataset("b", "ga"),
-    log:
-        logs("b_ga"),
-    benchmark:
-        benchmarks("b_ga")
-    localrule: True
-
-
-rule b_table1_runs_shard:
-    output:
-        shard_file("b", "table1"),
-    log:
-        logs("b_table1_runs.{shard}-of-{shards}"),
-    benchmark:
-        benchmarks("b_table1_runs.{shard}-of-{shards}")
-    wildcard_constraints:
-        shard=r"\d+",
-        shards=r"\d+",
-    priority: LONGEST_CHAIN
-    threads: BATCH_THREADS
-    resources:
-        runtime=30,
-    params:
-        **B_RUNS,
-        table1=B["table1"],
-    message:
-        "Paper B: balance time over ball mass and operating speed (Table 1)"
-    script:
-        "../scripts/b_table1.py"
-
-
-# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
-use rule b_table1_runs_shard as b_table1_runs with:
-    input:
-        shards=shards_of("b", "table1", B["shards"]),
-    output:
-        dataset("b", "table1"),
-    log:
-        logs("b_table1_runs"),
-    benchmark:
-        benchmarks("b_table1_runs")
-    localrule: True
-
-
-rule b_forces_shard:
-    output:
-        shard_file("b", "forces"),
-    log:
-        logs("b_forces.{shard}-of-{shards}"),
-    benchmark:
-        benchmarks("b_forces.{shard}-of-{shards}")
-    wildcard_constraints:
-        shard=r"\d+",
-        shards=r"\d+",
-    priority: LONGEST_CHAIN
-    threads: BATCH_THREADS
-    resources:
-        runtime=30,
-    params:
-        **B_RUNS,
-        table2=B["table2"],
-        calibration=B["calibration"],
-    message:
-        "Paper B: bearing forces of Table 2 against the race radius"
-    script:
-        "../scripts/b_forces.py"
-
-
-# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
-use rule b_forces_shard as b_forces with:
-    input:
-        shards=shards_of("b", "forces", B["shards"]),
-    output:
-        dataset("b", "forces"),
-    log:
-        logs("b_forces"),
-    benchmark:
-        benchmarks("b_forces")
-    localrule: True
-
-
-rule b_uncertainty_shard:
-    input:
-        forces=dataset("b", "forces"),
-        paper_values=PAPER_VALUES,
-    output:
-        shard_file("b", "uncertainty_{case}"),
-    log:
-        logs("b_uncertainty_{case}.{shard}-of-{shards}"),
-    benchmark:
-        benchmarks("b_uncertainty_{case}.{shard}-of-{shards}")
-    wildcard_constraints:
-        case="|".join(B_UNCERTAIN),
-        shard=r"\d+",
-        shards=r"\d+",
-    priority: LONGEST_CHAIN
-    threads: BATCH_THREADS
-    resources:
-        runtime=30,
-    params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"][0],
-        # the case of Table 1 (a mean over the ICs) has its own, smaller sample
-        uncertainty=lambda wc: {
-            **B["uncertainty"],
-            **(
-                B["uncertainty"]["mean_over_ics"]
-                if "ics" in B_UNCERTAIN[wc.case]
-                else {}
-            ),
-        },
-        case=lambda wc: B_UNCERTAIN[wc.case],
-    message:
-        "Paper B (beyond the paper): Sobol indices and bands of the case {wildcards.case}"
-    script:
-        "../scripts/b_uncertainty.py"
-
-
-# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
-use rule b_uncertainty_shard as b_uncertainty with:
-    input:
-        forces=dataset("b", "forces"),
-        paper_values=PAPER_VALUES,
-        shards=shards_of("b", "uncertainty_{case}", B["shards"]),
-    output:
-        dataset("b", "uncertainty_{case}"),
-    log:
-        logs("b_uncertainty_{case}"),
-    benchmark:
-        benchmarks("b_uncertainty_{case}")
-    localrule: True
 
 
 rule b_pareto:
@@ -610,32 +255,6 @@ rule b_pareto:
         "Paper B (beyond the paper): NSGA-II front of balance time against bearing force"
     script:
         "../scripts/b_pareto.py"
-
-
-# The law's sources: every balance study of the configuration (its fixed parameters, the
-# run-up's speed), Table 1, the basin map and the race-radius calibration (the forces of
-# Table 2's rows over R; the runs at the configured R are Table 2's).
-B_LAW_SOURCES = {
-    **{
-        f"balance_{name}": (
-            dataset("b", f"balance_{name}"),
-            {**study["fixed"], "speed": B["speed"]["omega"]},
-        )
-        for name, study in B["balance_studies"].items()
-    },
-    "table1": (
-        dataset("b", "table1"),
-        {"beta": B["table1"]["beta"], "eps_bar": B["table1"]["eps_bar"]},
-    ),
-    "basin": (
-        dataset("b", "basin"),
-        {"eps_bar": B["basin"]["eps_bar"], "speed": B["speed"]["omega"]},
-    ),
-    "calibration": (
-        dataset("b", "forces"),
-        {"eps_bar": B["table2"]["eps_bar"], "speed": B["table2"]["speed"]},
-    ),
-}
 
 
 rule b_balance_law:
@@ -719,44 +338,6 @@ rule b_zeta_inversion:
         "../scripts/b_zeta_inversion.py"
 
 
-rule b_basin_shard:
-    output:
-        shard_file("b", "basin"),
-    log:
-        logs("b_basin.{shard}-of-{shards}"),
-    benchmark:
-        benchmarks("b_basin.{shard}-of-{shards}")
-    wildcard_constraints:
-        shard=r"\d+",
-        shards=r"\d+",
-    priority: LONGEST_CHAIN
-    threads: BATCH_THREADS
-    resources:
-        runtime=60,
-    params:
-        setup=B_SETUP,
-        kinematics=B["kinematics"],
-        basin=B["basin"],
-        ics=B["initial_conditions"],
-    message:
-        "Paper B: balance time over all initial ball positions"
-    script:
-        "../scripts/b_basin.py"
-
-
-# The whole study in one job, or (paper_b.shards > 1) its shards gathered, byte-identical.
-use rule b_basin_shard as b_basin with:
-    input:
-        shards=shards_of("b", "basin", B["shards"]),
-    output:
-        dataset("b", "basin"),
-    log:
-        logs("b_basin"),
-    benchmark:
-        benchmarks("b_basin")
-    localrule: True
-
-
 rule b_tables:
     input:
         table1=rules.b_table1_runs.output[0],
@@ -765,24 +346,9 @@ rule b_tables:
         mass=dataset("b", "balance_mass"),
         ga=rules.b_ga.output[0],
     output:
-        table1=report_table(
-            "b",
-            "table1",
-            "Optimum ball mass (least mean balance time over the three initial conditions "
-            "of eq. 39) and that mean balance time against the operating speed, beside "
-            "the paper's values.",
-            items=["eq. 41"],
-            path=table("b", "table1", "csv"),
-        ),
+        table1=table("b", "table1", "csv"),
         table1_md=table("b", "table1", "md"),
-        table2=report_table(
-            "b",
-            "table2",
-            "Maximum bearing force and its decay time for the paper's three (beta, m) "
-            "cases, with the race radius R inferred from the paper's forces (Fig "
-            "calibration R), beside the paper's values.",
-            path=table("b", "table2", "csv"),
-        ),
+        table2=table("b", "table2", "csv"),
         table2_md=table("b", "table2", "md"),
         kinematics=table("b", "kinematics", "md"),
     log:
@@ -804,7 +370,10 @@ rule b_reproduced_values:
             for case in B_UNCERTAIN
         },
         **{f"pareto_{kin}": dataset("b", f"pareto_{kin}") for kin in B["kinematics"]},
-        **{f"boundary_{plane}": dataset("b", f"boundary_{plane}") for plane in B_PLANES},
+        **{
+            f"boundary_{plane}": dataset("b", f"boundary_{plane}")
+            for plane in paper_b.PLANES
+        },
         st2=dataset("b", "stability_fig2"),
         st3=dataset("b", "stability_fig3"),
         tr=rules.b_time_responses.output[0],

@@ -6,12 +6,12 @@
 1. **Count.** The workflow itself builds paper B's datasets (rule ``b_datasets``; not the
    discrepancy analysis's, which needs the stated values measured on real runs and does not
    grow with the studies) in a scratch folder
-   (``results/estimate/...``), with every batch of runs (:meth:`Setup.runs
-   <rotorvib.papers.b.setup.Setup.runs>`) of more than ``COMPUTED`` run-ups answered by a
-   counter instead of the engine: all-zero metrics (every run censored), the number of
-   run-ups recorded with a random sample of them (:func:`count_runs`, installed in every job
-   process by a ``sitecustomize`` hook on the counting pass's path; nothing in the workflow
-   or its jobs' code knows of it).
+   (``results/estimate/...``), with every batch of runs of the balancer model's batch API
+   (:func:`rotorvib.models.balancer.simulate.run_batch`) of more than ``COMPUTED`` run-ups
+   answered by a counter instead of the engine: all-zero metrics (every run censored), the
+   number of run-ups recorded with a random sample of them (:func:`count_runs`, installed in
+   every job process by a ``sitecustomize`` hook on the counting pass's path, before anything
+   imports the model; nothing in the workflow or its jobs' code knows of it).
    Smaller batches (Table 2's calibration, say) run for real, so that what depends on them
    builds. The counts are those of the workflow's own code: nothing here mirrors it.
 2. **Time.** Each job's sample of run-ups is integrated for real on one thread: the CPU
@@ -51,32 +51,33 @@ SAMPLE = 64
 
 
 class RunCounter:
-    """Stands in for :meth:`Setup.runs` in a counting pass: counts every run-up of the job,
-    keeps a uniform random sample of ``sample`` of them (reservoir sampling) with the setup
-    that runs it, computes batches of at most ``computed`` run-ups and answers larger ones with
-    all-zero metrics."""
+    """Stands in for :func:`~rotorvib.models.balancer.simulate.run_batch` in a counting pass:
+    counts every run-up of the job, keeps a uniform random sample of ``sample`` of them
+    (reservoir sampling) with the batch's form, criterion and options, computes batches of at
+    most ``computed`` run-ups with ``real`` and answers larger ones with all-zero metrics."""
 
     def __init__(self, real, sample: int = SAMPLE, computed: int = COMPUTED, seed: int = 0):
         self.real, self.sample, self.computed = real, sample, computed
         self.rng = np.random.default_rng(seed)
         self.runs, self.counted, self.batches = 0, 0, 0
-        self.kept: list[tuple[object, np.ndarray, np.ndarray]] = []
+        self.kept: list[tuple[tuple, np.ndarray, np.ndarray]] = []
 
-    def __call__(self, setup, inputs, *, progress: bool = True) -> np.ndarray:
+    def __call__(self, form, params, y0s, criterion, **options) -> np.ndarray:
         from rotorvib.models.balancer.analysers import N_METRICS
 
-        inputs = list(inputs)
-        for params, y0 in inputs:
+        batch = (form, criterion, tuple(sorted(
+            (k, v) for k, v in options.items() if k != "progress")))
+        for row, y0 in zip(params, y0s):
             self.runs += 1
             if len(self.kept) < self.sample:
-                self.kept.append((setup, params, y0))
+                self.kept.append((batch, row, y0))
             elif (j := self.rng.integers(self.runs)) < self.sample:
-                self.kept[j] = (setup, params, y0)
+                self.kept[j] = (batch, row, y0)
         self.batches += 1
-        if len(inputs) <= self.computed:
-            return self.real(setup, inputs, progress=False)
-        self.counted += len(inputs)
-        return np.zeros((len(inputs), N_METRICS))
+        if len(params) <= self.computed:
+            return self.real(form, params, y0s, criterion, **options)
+        self.counted += len(params)
+        return np.zeros((len(params), N_METRICS))
 
     def write(self, path: Path) -> None:
         with open(path, "wb") as f:
@@ -85,18 +86,19 @@ class RunCounter:
 
 
 def count_runs(folder: Path) -> None:
-    """Install a :class:`RunCounter` for this process (a job of a counting pass: the
-    ``sitecustomize`` hook :func:`counting_pass` puts on the path runs this at start-up); when
-    the process ends, its counts go to ``folder/counts/<dataset>.<pid>.pkl``, the dataset being
-    the job's first output.  Refused unless ``folder`` is a counting pass's scratch folder:
-    zero metrics must never reach real results."""
-    from rotorvib.papers.b.setup import Setup
-
+    """Install a :class:`RunCounter` as the balancer model's batch API for this process (a job
+    of a counting pass: the ``sitecustomize`` hook :func:`counting_pass` puts on the path runs
+    this at start-up, before any module binds the name); when the process ends, its counts go
+    to ``folder/counts/<dataset>.<pid>.pkl``, the dataset being the job's first output.
+    Refused unless ``folder`` is a counting pass's scratch folder: zero metrics must never
+    reach real results."""
     if not (folder / MARKER).is_file():
         raise RuntimeError(f"{COUNT_ENV}={folder} is not a counting pass's folder (no "
                            f"{MARKER} file): refusing to answer runs with zeros")
-    counter = RunCounter(Setup.runs)
-    Setup.runs = lambda self, inputs, *, progress=True: counter(self, inputs)
+    from rotorvib.models.balancer import simulate
+
+    counter = RunCounter(simulate.run_batch)
+    simulate.run_batch = counter
 
     def write():
         job = getattr(sys.modules.get("__main__"), "snakemake", None)
@@ -134,22 +136,20 @@ class JobCost:
 def time_sample(sample: list) -> float:
     """CPU seconds per run-up of a job's sample (one thread; the engine's compiled code loaded
     before the clock starts)."""
-    from rotorvib.models.balancer import engine
     from rotorvib.models.balancer.simulate import run_batch, use_threads
 
     use_threads(1)
     cpu = 0.0
-    by_setup: dict[int, list] = {}
-    for setup, params, y0 in sample:
-        by_setup.setdefault(id(setup), []).append((setup, params, y0))
-    for group in by_setup.values():
-        setup = group[0][0]
+    by_batch: dict[int, list] = {}
+    for batch, params, y0 in sample:
+        by_batch.setdefault(id(batch), []).append((batch, params, y0))
+    for group in by_batch.values():
+        (form, criterion, options) = group[0][0]
         params, y0s = np.stack([p for _, p, _ in group]), np.stack([y for _, _, y in group])
-        args = dict(criterion=setup.criterion, stop=setup.stop, progress=False,
-                    **setup.tolerances)
-        run_batch(engine.FIXED, params[:1], y0s[:1], **args)          # load, not timed
+        args = dict(options, progress=False)
+        run_batch(form, params[:1], y0s[:1], criterion, **args)          # load, not timed
         start = time.process_time()
-        run_batch(engine.FIXED, params, y0s, **args)
+        run_batch(form, params, y0s, criterion, **args)
         cpu += time.process_time() - start
     return cpu / len(sample)
 

@@ -21,10 +21,13 @@ USED = {"set_params": ("self", "params", "kwparams"), "is_producer": ("self", "r
 
 
 def script_path(rule) -> str | None:
-    """The path of ``rule``'s script, or None for a rule without one."""
+    """The path of ``rule``'s script, or None for a rule without one; a path naming one of
+    its parameters (``"../scripts/{params.script}.py"``, as Snakemake formats it when the job
+    runs) with that parameter's value."""
     if not rule.script:
         return None
-    return rule.basedir.join(rule.script).get_path_or_uri(secret_free=True)
+    return rule.basedir.join(rule.script.format(params=rule.params)).get_path_or_uri(
+        secret_free=True)
 
 
 def add_params(rule, **params) -> None:
