@@ -179,3 +179,18 @@ def test_a_file_not_written_by_the_pipeline_is_refused(tmp_path):
     _dataset().to_netcdf(path)
     with pytest.raises(DatasetError, match="has no checksum"):
         read_dataset(path)
+
+
+def test_variables_take_their_long_name_and_units_from_one_table():
+    """rotorvib.io.variables.described: each variable its table's long name and units (a label
+    none), and a variable without a description or a description of no variable refused."""
+    from rotorvib.io.variables import described
+
+    table = {"t": ("time", "s"), "name": ("what it is", None)}
+    out = described({"t": ("run", [1.0]), "name": ("run", ["a"])}, table)
+    assert out == {"t": ("run", [1.0], {"long_name": "time", "units": "s"}),
+                   "name": ("run", ["a"], {"long_name": "what it is"})}
+    with pytest.raises(KeyError, match=r"without a description: \['x'\]"):
+        described({"t": ("run", [1.0]), "name": ("run", ["a"]), "x": ((), 0.0)}, table)
+    with pytest.raises(KeyError, match=r"descriptions of no variable: \['name'\]"):
+        described({"t": ("run", [1.0])}, table)

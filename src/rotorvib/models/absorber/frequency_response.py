@@ -17,34 +17,13 @@ from scipy.linalg import eigvals
 from scipy.optimize import minimize_scalar
 
 from rotorvib.checks import finite_array, integer
+from rotorvib.models.absorber.linear import matrices
 from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
-
-
-def matrices(rotor: Rotor, sets, spin: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Mass, damping and stiffness matrices of the linearised equations (eq. 14), any set count.
-
-    Row 0 is the disk equation (11); row ``j`` the equation (12)/(13) of set ``j`` as printed
-    (divided by 2, so M is not symmetric).  ``spin`` is the rotor's mean speed Omega (rad/s),
-    which the paper's kinetic energy leaves out: with it the term ``-m u (Omega + theta')^2`` of
-    eq. (9), linearised, softens each set's stiffness to ``2 k - m Omega^2`` (beyond the paper;
-    0 gives eq. 14 as printed).
-    """
-    n = 1 + len(sets)
-    M, C, K = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
-    M[0, 0] = rotor.J + sum(2 * s.m * s.d**2 for s in sets)
-    K[0, 0] = rotor.k_t
-    for j, s in enumerate(sets, start=1):
-        M[0, j] = 2 * s.m * s.d
-        M[j, 0] = s.m * s.d
-        M[j, j] = s.m
-        C[j, j] = 2 * s.c
-        K[j, j] = 2 * s.k - s.m * spin**2
-    return M, C, K
 
 
 def dynamic_stiffness(rotor: Rotor, sets, omega, spin: float = 0.0) -> np.ndarray:
     """``A(w) = -M w^2 + i w C + K`` (eq. 18), shape ``omega.shape + (n, n)``; ``spin`` as in
-    :func:`matrices`."""
+    :func:`~rotorvib.models.absorber.linear.matrices`."""
     M, C, K = matrices(rotor, sets, spin)
     w = finite_array("omega", omega)[..., None, None]
     return -M * w**2 + 1j * w * C + K
@@ -52,7 +31,7 @@ def dynamic_stiffness(rotor: Rotor, sets, omega, spin: float = 0.0) -> np.ndarra
 
 def steady_state(rotor: Rotor, sets, omega, spin: float = 0.0) -> np.ndarray:
     """Complex amplitudes ``[Theta, S1, S2, ...]`` (rad, m, m) of eq. (17) by a linear solve;
-    ``spin`` as in :func:`matrices`."""
+    ``spin`` as in :func:`~rotorvib.models.absorber.linear.matrices`."""
     A = dynamic_stiffness(rotor, sets, omega, spin)
     rhs = np.zeros(A.shape[:-1], dtype=complex)
     rhs[..., 0] = rotor.Gamma0
@@ -90,7 +69,7 @@ def dimensionless_amplitude(rotor: Rotor, theta) -> np.ndarray:
 
 def amplitude(rotor: Rotor, sets, w, spin: float = 0.0) -> np.ndarray:
     """``D(w)`` of the rotor with ``sets`` at frequency ratios ``w = omega / omega_n``;
-    ``spin`` as in :func:`matrices`."""
+    ``spin`` as in :func:`~rotorvib.models.absorber.linear.matrices`."""
     omega = np.asarray(w) * rotor.omega_n
     return dimensionless_amplitude(rotor, steady_state(rotor, sets, omega, spin)[..., 0])
 

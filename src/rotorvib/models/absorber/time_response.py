@@ -20,7 +20,7 @@ import numpy as np
 
 from rotorvib.checks import integer, number
 from rotorvib.methods.integrate import integrate
-from rotorvib.models.absorber.frequency_response import matrices
+from rotorvib.models.absorber.linear import matrices
 from rotorvib.models.absorber.parameters import Rotor
 
 

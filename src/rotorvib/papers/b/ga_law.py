@@ -26,6 +26,7 @@ import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.coords import label_coord, pick
+from rotorvib.io.variables import described
 from rotorvib.models.balancer import engine
 from rotorvib.models.balancer.simulate import run
 from rotorvib.papers.b.choices import GA_LAW_CHOICES
@@ -73,6 +74,35 @@ def split_change(amplitude, sigma, r_threshold: float):
             np.log(amplitude / r_threshold) * (1 / sigma - 1 / s0))
 
 
+
+#: The variables of :func:`ga_law_dataset`: (long name, units).
+GA_LAW_VARIABLES = {
+    "M": ("disk mass", "kg"),
+    "mass_min": ("least ball mass of the GA's box", "kg"),
+    "step": ("relative change of beta or m to a neighbour", "1"),
+    "r_threshold": ("whirl radius of the balance criterion", "m"),
+    "t_ramp": ("end of the run-up, where the line's A is read", "s"),
+    "beta": ("ball damping ratio beta", "1"),
+    "mass": ("ball mass", "kg"),
+    "in_box": ("1 if the point lies in the GA's box (a candidate of the GA)", "1"),
+    "balance_time": ("balance time of the integration (NaN if censored)", "s"),
+    "sigma_fit": ("decay rate of the whirl's envelope after the run-up (fit)", "s-1"),
+    "sigma_eigen": ("slowest non-neutral decay rate of the balanced state (eigenvalues)", "s-1"),
+    "amplitude": ("whirl the passage leaves: the envelope's line at the end of the run-up", "m"),
+    "fit_residual": ("largest |residual| of the line through ln(envelope)", "1"),
+    "line_time": ("balance time by the line, t_ramp + ln(A / r_thr) / sigma (NaN if the whirl "
+                  "does not decay)", "s"),
+    "peak_law_time": ("balance time by the peak-force law t_pk + ln(F_pk / (k r_thr)) / sigma",
+                      "s"),
+    "amplitude_term": ("change of the line's time from the optimum through the amplitude, "
+                       "ln(A_n / A_o) / sigma_o", "s"),
+    "rate_term": ("change of the line's time from the optimum through the decay rate, "
+                  "ln(A_n / r_thr) (1 / sigma_n - 1 / sigma_o)", "s"),
+    "envelope": ("largest whirl radius r in each bin after the run-up", "m"),
+    "envelope_time": ("time of the largest r in each bin", "s"),
+}
+
+
 def ga_law_dataset(setup: Setup, ga: xr.Dataset, ics: dict, beta_bounds, mass_bounds, *,
                    step: float, settle: float, horizon: float, width: float,
                    neutral: float) -> xr.Dataset:
@@ -116,50 +146,19 @@ def ga_law_dataset(setup: Setup, ga: xr.Dataset, ics: dict, beta_bounds, mass_bo
     in_box = ((beta >= beta_bounds[0]) & (beta <= beta_bounds[1])
               & (mass >= mass_bounds[0]) & (mass <= mass_bounds[1]))
     dims = ("kinematics", "eps_bar", "ic", "neighbour")
-    s, one = {"units": "s"}, {"units": "1"}
+    law_time = balance_time_law(out["t_peak"], out["force_peak"], setup.k * r_thr, sigma_eig)
     return xr.Dataset(
-        {"M": ((), setup.M, {"long_name": "disk mass", "units": "kg"}),
-         "mass_min": ((), mass_bounds[0], {"long_name": "least ball mass of the GA's box",
-                                           "units": "kg"}),
-         "step": ((), step, {"long_name": "relative change of beta or m to a neighbour", **one}),
-         "r_threshold": ((), r_thr, {"long_name": "whirl radius of the balance criterion",
-                                     "units": "m"}),
-         "t_ramp": ((), t0, {"long_name": "end of the run-up, where the line's A is read", **s}),
-         "beta": (dims, beta, {"long_name": "ball damping ratio beta", **one}),
-         "mass": (dims, mass, {"long_name": "ball mass", "units": "kg"}),
-         "in_box": (dims, in_box.astype(np.int8), {
-             "long_name": "1 if the point lies in the GA's box (a candidate of the GA)", **one}),
-         "balance_time": (dims, out["balance_time"], {
-             "long_name": "balance time of the integration (NaN if censored)", **s}),
-         "sigma_fit": (dims, out["sigma_fit"], {
-             "long_name": "decay rate of the whirl's envelope after the run-up (fit)",
-             "units": "s-1"}),
-         "sigma_eigen": (dims, sigma_eig, {
-             "long_name": "slowest non-neutral decay rate of the balanced state (eigenvalues)",
-             "units": "s-1"}),
-         "amplitude": (dims, out["amplitude"], {
-             "long_name": "whirl the passage leaves: the envelope's line at the end of the "
-                          "run-up", "units": "m"}),
-         "fit_residual": (dims, out["residual"], {
-             "long_name": "largest |residual| of the line through ln(envelope)", **one}),
-         "line_time": (dims, line, {
-             "long_name": "balance time by the line, t_ramp + ln(A / r_thr) / sigma (NaN if "
-                          "the whirl does not decay)", **s}),
-         "peak_law_time": (dims, balance_time_law(out["t_peak"], out["force_peak"],
-                                                  setup.k * r_thr, sigma_eig), {
-             "long_name": "balance time by the peak-force law t_pk + ln(F_pk / (k r_thr)) / "
-                          "sigma", **s}),
-         "amplitude_term": (dims, amplitude_term, {
-             "long_name": "change of the line's time from the optimum through the amplitude, "
-                          "ln(A_n / A_o) / sigma_o", **s}),
-         "rate_term": (dims, rate_term, {
-             "long_name": "change of the line's time from the optimum through the decay rate, "
-                          "ln(A_n / r_thr) (1 / sigma_n - 1 / sigma_o)", **s}),
-         "envelope": (dims + ("bin",), envelopes, {
-             "long_name": "largest whirl radius r in each bin after the run-up",
-             "units": "m"}),
-         "envelope_time": (dims + ("bin",), times_of, {
-             "long_name": "time of the largest r in each bin", **s})},
+        described({
+            "M": ((), setup.M), "mass_min": ((), mass_bounds[0]), "step": ((), step),
+            "r_threshold": ((), r_thr), "t_ramp": ((), t0),
+            "beta": (dims, beta), "mass": (dims, mass), "in_box": (dims, in_box.astype(np.int8)),
+            "balance_time": (dims, out["balance_time"]), "sigma_fit": (dims, out["sigma_fit"]),
+            "sigma_eigen": (dims, sigma_eig), "amplitude": (dims, out["amplitude"]),
+            "fit_residual": (dims, out["residual"]), "line_time": (dims, line),
+            "peak_law_time": (dims, law_time), "amplitude_term": (dims, amplitude_term),
+            "rate_term": (dims, rate_term), "envelope": (dims + ("bin",), envelopes),
+            "envelope_time": (dims + ("bin",), times_of),
+        }, GA_LAW_VARIABLES),
         coords={**{c: ga[c] for c in ("eps_bar", "kinematics_name", "ic_name")},
                 **label_coord("neighbour", list(NEIGHBOURS), "point around the GA's optimum")},
         attrs=dataset_attrs(

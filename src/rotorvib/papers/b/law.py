@@ -26,6 +26,7 @@ import xarray as xr
 
 from rotorvib.choices import VARIANT_JOIN, Close
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.variables import described
 from rotorvib.methods.sensitivity import percentile_spread
 from rotorvib.papers.b.choices import LAW_CHOICES
 from rotorvib.papers.b.setup import Setup, dataset_attrs
@@ -35,6 +36,22 @@ from rotorvib.papers.b.stability_maps import balanced_modes
 _PARAMETER_COORDS = {"mass": "mass", "case_mass": "mass", "beta": "beta", "case_beta": "beta",
                      "eps_bar": "eps_bar", "speed": "speed", "zeta": "zeta"}
 _RUN_PARAMETERS = ("mass", "beta", "eps_bar", "speed", "zeta")
+#: The law dataset's variables: (long name, units); its relative errors share one.
+LAW_VARIABLES = {
+    "m_bar": ("ball mass ratio m/M", "1"),
+    "eps_bar": ("eccentricity ratio eps/R", "1"),
+    "beta": ("ball damping ratio beta", "1"),
+    "omega_bar": ("operating speed / omega_n", "1"),
+    "zeta": ("support damping ratio", "1"),
+    "sigma": ("decay rate of the slowest non-neutral mode carrying at least the share of the "
+              "whirl", "s-1"),
+    "sigma_slowest": ("decay rate of the slowest non-neutral mode of all", "s-1"),
+    "t_peak": ("time of the peak bearing force (the critical-speed passage)", "s"),
+    "force_peak": ("peak bearing force", "N"),
+    "predicted": ("balance time by the law t_pk + ln(F_pk / (k r_thr)) / sigma", "s"),
+    "predicted_slowest": ("balance time by the law with the slowest mode of all", "s"),
+    "balance_time": ("balance time of the integration (threshold criterion)", "s"),
+}
 
 
 def slow_decay_rate(m_bar, eps_bar, zeta, beta, omega_bar, *, neutral: float, n: int = 2,
@@ -126,42 +143,24 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
 
     predicted = law(data["sigma"].T)
     slowest = law(data["sigma_slowest"])
-    one = {"units": "1"}
-    error = {"long_name": "relative error of the law, (law - integration) / integration (NaN "
-                          "where the law has no rate)", **one}
+    error = ("relative error of the law, (law - integration) / integration (NaN where the law "
+             "has no rate)", "1")
     return xr.Dataset(
-        {"m_bar": ("run", data["m_bar"], {"long_name": "ball mass ratio m/M", **one}),
-         "eps_bar": ("run", data["eps_bar"], {"long_name": "eccentricity ratio eps/R", **one}),
-         "beta": ("run", data["beta"], {"long_name": "ball damping ratio beta", **one}),
-         "omega_bar": ("run", data["omega_bar"], {"long_name": "operating speed / omega_n",
-                                                  **one}),
-         "zeta": ("run", data["zeta"], {"long_name": "support damping ratio", **one}),
-         "sigma": (("share", "run"), data["sigma"].T, {
-             "long_name": "decay rate of the slowest non-neutral mode carrying at least the "
-                          "share of the whirl", "units": "s-1"}),
-         "sigma_slowest": ("run", data["sigma_slowest"], {
-             "long_name": "decay rate of the slowest non-neutral mode of all", "units": "s-1"}),
-         "t_peak": ("run", data["t_peak"], {"long_name": "time of the peak bearing force "
-                                                         "(the critical-speed passage)",
-                                            "units": "s"}),
-         "force_peak": ("run", data["force_peak"], {"long_name": "peak bearing force",
-                                                    "units": "N"}),
-         "predicted": (("share", "run"), predicted, {
-             "long_name": "balance time by the law t_pk + ln(F_pk / (k r_thr)) / sigma",
-             "units": "s"}),
-         "predicted_slowest": ("run", slowest, {
-             "long_name": "balance time by the law with the slowest mode of all",
-             "units": "s"}),
-         "balance_time": ("run", data["balance_time"], {
-             "long_name": "balance time of the integration (threshold criterion)",
-             "units": "s"}),
-         "relative_error": (("share", "run"),
-                            (predicted - data["balance_time"]) / data["balance_time"], error),
-         "relative_error_slowest": ("run", (slowest - data["balance_time"])
-                                    / data["balance_time"], error)},
+        described({
+            **{k: ("run", data[k]) for k in ("m_bar", "eps_bar", "beta", "omega_bar", "zeta")},
+            "sigma": (("share", "run"), data["sigma"].T),
+            **{k: ("run", data[k]) for k in ("sigma_slowest", "t_peak", "force_peak")},
+            "predicted": (("share", "run"), predicted),
+            "predicted_slowest": ("run", slowest),
+            "balance_time": ("run", data["balance_time"]),
+            "relative_error": (("share", "run"),
+                               (predicted - data["balance_time"]) / data["balance_time"]),
+            "relative_error_slowest": ("run", (slowest - data["balance_time"])
+                                       / data["balance_time"]),
+        }, {**LAW_VARIABLES, "relative_error": error, "relative_error_slowest": error}),
         coords={"whirl_share": ("share", np.asarray(shares), {
                     "long_name": "least share of the whirl of the mode whose rate the law "
-                                 "takes (the first is the law's)", **one}),
+                                 "takes (the first is the law's)", "units": "1"}),
                 "source": ("run", data["source"], {"long_name": "study the run belongs to"}),
                 "kinematics_name": ("run", data["kinematics"], {"long_name": "kinematics"})},
         attrs=dataset_attrs("a law for the balance time",

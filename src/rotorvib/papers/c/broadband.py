@@ -23,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.variables import described
 from rotorvib.methods.ga import ParetoFront, pareto_front
 from rotorvib.models.absorber.frequency_response import (amplitude, bare_rotor_amplitude,
                                                          dimensionless_amplitude, rotor_peak,
@@ -141,6 +142,36 @@ def tuned_mass_floor(rotor: Rotor, k_min: float) -> float:
     return 4 * 2 * k_min / rotor.omega_n**2
 
 
+
+#: The variables of :func:`broadband_dataset`: (long name, units).
+BROADBAND_VARIABLES = {
+    "front_band_peak": ("largest D over the band, Pareto front", "1"),
+    "front_added_mass": ("added mass 2 (m1 + m2), Pareto front", "kg"),
+    "front_x": ("design of the Pareto front (units: kg, N m-1, N s m-1, m by kind)", "1"),
+    "front_den_hartog_peak": ("largest D of Den Hartog's single absorber of the same added mass",
+                              "1"),
+    "D": ("dimensionless torsional amplitude D = |Theta| k_t / Gamma0", "1"),
+    "D_none": ("D without absorber, 1/|1 - w^2|", "1"),
+    "band_peak": ("largest D over the band (sampled)", "1"),
+    "peak": ("largest D over all frequencies (refined)", "1"),
+    "peak_w": ("frequency ratio of the largest D", "1"),
+    "added_mass": ("added mass of the absorber bodies", "kg"),
+    "parameters": ("design (m, k, c, d of set 1 and set 2; NaN: no second set; units: kg, N m-1, "
+                   "N s m-1, m by kind)", "1"),
+    "broadband_peak_by_seed": ("largest D over all frequencies of the broadband design, from "
+                               "each seed of NSGA-II (the first is the design shown)", "1"),
+    "free_spring_peak": ("largest D over all frequencies of a dual absorber of Den Hartog's mass "
+                         "and radius with springs and dampers free of the bounds", "1"),
+    "free_spring_parameters": ("that design (m, k, c, d of set 1 and set 2; units: kg, N m-1, "
+                               "N s m-1, m by kind)", "1"),
+    "tuned_mass_floor": ("least added mass of two sets tuned to omega_n within the bounds", "kg"),
+    "lower_bound_k": ("least spring stiffness the bounds allow", "N m-1"),
+    "omega_n": ("natural frequency of the rotor without absorber", "rad s-1"),
+    "theta": ("disk twist angle from rest under Gamma0 cos(omega_n t), exact linear response of "
+              "eq. (14)", "rad"),
+}
+
+
 def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: ParetoFront,
                       band_w, w, t, k_min: float, spread_fronts=()) -> xr.Dataset:
     """The front, and each design of :data:`DESIGNS`: D over ``w``, the band peak over
@@ -167,50 +198,27 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
             parameters[i, [j, 2 + j, 4 + j, 6 + j]] = [s.m, s.k, s.c, s.d]
     one = {"units": "1"}
     return xr.Dataset(
-        {"front_band_peak": ("front", front.f[:, 0], {
-            "long_name": "largest D over the band, Pareto front", **one}),
-         "front_added_mass": ("front", front.f[:, 1], {
-             "long_name": "added mass 2 (m1 + m2), Pareto front", "units": "kg"}),
-         "front_x": (("front", "parameter"), front.x, {
-             "long_name": "design of the Pareto front (units: kg, N m-1, N s m-1, m by kind)",
-             **one}),
-         "front_den_hartog_peak": ("front", den_hartog_peaks(rotor, front.f[:, 1], d_single), {
-             "long_name": "largest D of Den Hartog's single absorber of the same added mass",
-             **one}),
-         "D": (("design", "w"), D, {
-             "long_name": "dimensionless torsional amplitude D = |Theta| k_t / Gamma0", **one}),
-         "D_none": ("w", bare_rotor_amplitude(w), {
-             "long_name": "D without absorber, 1/|1 - w^2|", **one}),
-         "band_peak": ("design", band, {"long_name": "largest D over the band (sampled)", **one}),
-         "peak": ("design", peaks[:, 1], {
-             "long_name": "largest D over all frequencies (refined)", **one}),
-         "peak_w": ("design", peaks[:, 0], {
-             "long_name": "frequency ratio of the largest D", **one}),
-         "added_mass": ("design", mass, {"long_name": "added mass of the absorber bodies",
-                                         "units": "kg"}),
-         "parameters": (("design", "parameter"), parameters, {
-             "long_name": "design (m, k, c, d of set 1 and set 2; NaN: no second set; units: "
-                          "kg, N m-1, N s m-1, m by kind)", **one}),
-         "broadband_peak_by_seed": ("seed", by_seed, {
-             "long_name": "largest D over all frequencies of the broadband design, from each "
-                          "seed of NSGA-II (the first is the design shown)", **one}),
-         "free_spring_peak": ((), rotor_peak(rotor, free)[1], {
-             "long_name": "largest D over all frequencies of a dual absorber of Den Hartog's "
-                          "mass and radius with springs and dampers free of the bounds", **one}),
-         "free_spring_parameters": ("parameter", [getattr(s, kind) for kind in "mkcd"
-                                                  for s in free], {
-             "long_name": "that design (m, k, c, d of set 1 and set 2; units: kg, N m-1, "
-                          "N s m-1, m by kind)", **one}),
-         "tuned_mass_floor": ((), tuned_mass_floor(rotor, k_min), {
-             "long_name": "least added mass of two sets tuned to omega_n within the bounds",
-             "units": "kg"}),
-         "lower_bound_k": ((), float(k_min), {"long_name": "least spring stiffness the bounds "
-                                                          "allow", "units": "N m-1"}),
-         "omega_n": ((), rotor.omega_n, {"long_name": "natural frequency of the rotor "
-                                                  "without absorber", "units": "rad s-1"}),
-         "theta": (("design", "t"), theta, {
-             "long_name": "disk twist angle from rest under Gamma0 cos(omega_n t), exact "
-                          "linear response of eq. (14)", "units": "rad"})},
+        described({
+            "front_band_peak": ("front", front.f[:, 0]),
+            "front_added_mass": ("front", front.f[:, 1]),
+            "front_x": (("front", "parameter"), front.x),
+            "front_den_hartog_peak": ("front", den_hartog_peaks(rotor, front.f[:, 1], d_single)),
+            "D": (("design", "w"), D),
+            "D_none": ("w", bare_rotor_amplitude(w)),
+            "band_peak": ("design", band),
+            "peak": ("design", peaks[:, 1]),
+            "peak_w": ("design", peaks[:, 0]),
+            "added_mass": ("design", mass),
+            "parameters": (("design", "parameter"), parameters),
+            "broadband_peak_by_seed": ("seed", by_seed),
+            "free_spring_peak": ((), rotor_peak(rotor, free)[1]),
+            "free_spring_parameters": ("parameter", [getattr(s, kind) for kind in "mkcd"
+                                                     for s in free]),
+            "tuned_mass_floor": ((), tuned_mass_floor(rotor, k_min)),
+            "lower_bound_k": ((), float(k_min)),
+            "omega_n": ((), rotor.omega_n),
+            "theta": (("design", "t"), theta),
+        }, BROADBAND_VARIABLES),
         coords={"design_name": ("design", np.array(list(DESIGNS.values()), dtype=object),
                                 {"long_name": "absorber design"}),
                 "design_key": ("design", np.array(list(DESIGNS), dtype=object),
