@@ -49,6 +49,16 @@ def landing(browser, report: Path, width: int, height: int, screenshot: Path) ->
     return seen
 
 
+def sidebar(browser, report: Path) -> list[str]:
+    """The report's categories as its sidebar lists them, top to bottom (under "Results")."""
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    page.goto(report.as_uri())
+    page.wait_for_selector("h1.title")
+    lines = page.locator("nav").first.inner_text().splitlines()
+    page.close()
+    return lines[[line.upper() for line in lines].index("RESULTS") + 1:]
+
+
 @dataclass
 class View:
     """One view a reader opened: how (the clicks), what it showed, and the page errors."""

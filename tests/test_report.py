@@ -11,8 +11,7 @@ from rotorvib.pipeline import report
 
 # Snakemake appends link targets for each category to every caption and to the landing page.
 LINKS = "\n\n" + "\n".join(f".. _{name}: javascript:app.showCategory('{name}')"
-                          for name in ("Summary", "Paper A", "Paper B", "Paper C",
-                                       "Comparison")) + "\n"
+                          for name in report.categories("abc").values()) + "\n"
 
 
 def html(rst: str) -> str:
@@ -68,9 +67,18 @@ def test_the_report_lists_sort_in_the_papers_order_and_read_as_labels():
 
 
 def test_outputs_beyond_the_paper_have_their_own_subcategory():
-    assert report.subcategory("Beyond the paper: the basin.", "figure") == report.BEYOND
-    assert report.subcategory("Balance time against beta.", "figure") == "Figures"
-    assert report.subcategory("Table 2 beside the GA.", "table") == "Tables"
+    assert report.subcategory("Beyond the paper: the basin.", "figure") == "3 Beyond the paper"
+    assert report.subcategory("Balance time against beta.", "figure") == "1 Figures"
+    assert report.subcategory("Table 2 beside the GA.", "table") == "2 Tables"
+
+
+def test_the_categories_sort_in_the_storys_order():
+    """Snakemake's sidebar sorts by name (localeCompare): the numbered names sort as the story
+    goes, summary, papers, comparison, for any number of papers."""
+    assert list(report.categories("abc").values()) == [
+        "1 Summary", "2 Paper A", "3 Paper B", "4 Paper C", "5 Comparison"]
+    named = list(report.categories("abcdefghijk").values())
+    assert named[0] == "01 Summary" and named[-1] == "13 Comparison" and sorted(named) == named
 
 
 def test_a_declaration_names_the_outputs_whose_cases_it_draws():

@@ -90,7 +90,7 @@ def test_the_landing_page_and_summary_are_inert(secret):
               "uncertainty": "", "margin_unit": "", "margin_basis": ""} for t in texts]
     papers = {"A": {"title": " ".join(texts), "citation": texts[1], "summary": texts[6]}}
     links = "\n\n" + "\n".join(f".. _{name}: javascript:app.showCategory('{name}')"
-                              for name in ("Summary", "Paper A", "Comparison")) + "\n"
+                              for name in report.categories("a").values()) + "\n"
     landing = snakemake_renders(report.landing_page(table, papers) + links)
     assert_inert(landing, secret)
     assert "{{ 1000+337 }}" in landing

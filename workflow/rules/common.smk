@@ -18,7 +18,7 @@ from rotorvib.pipeline.strict_yaml import check_value
 from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
-from rotorvib.pipeline.report import entry_label, names_in, subcategory
+from rotorvib.pipeline.report import categories, entry_label, names_in, subcategory
 from rotorvib.pipeline.snakemake_rules import (
     add_params,
     module_config_given,
@@ -261,10 +261,11 @@ def report_entries():
     ``item``: Snakemake's report turns a second label into a toggle, which breaks a view
     where it takes two values (one of two results, say). A view sorts its results by it.
     """
+    named = categories(PAPERS)
     entries = {
         shown("all", "summary.html"): (
             SUMMARY_PAGE,
-            {"category": "Summary", "labels": {"item": "Verdicts and findings"}},
+            {"category": named["Summary"], "labels": {"item": "Verdicts and findings"}},
         )
     }
     for kind, declared in (("figure", FIGURES), ("table", TABLES)):
@@ -278,9 +279,9 @@ def report_entries():
                     source,
                     {
                         "caption": f"../../{caption_file(paper, name, kind)}",
-                        "category": (
+                        "category": named[
                             "Comparison" if paper == "all" else f"Paper {paper.upper()}"
-                        ),
+                        ],
                         "subcategory": (
                             None if paper == "all" else subcategory(d["shows"], kind)
                         ),
@@ -288,6 +289,39 @@ def report_entries():
                     },
                 )
     return entries
+
+
+def figure_rule(paper, name):
+    """The name of the job that draws figure ``name`` of ``paper`` (its group's, named for the
+    group's first figure, figures.smk)."""
+    return next(
+        f"figures_{paper}_{names[0]}"
+        for (group_paper, _), names in figure_groups().items()
+        if group_paper == paper and name in names
+    )
+
+
+def made_by(paper, name, kind):
+    """How the report says a figure or table was made: the rule that drew or wrote it, its
+    script, the drawing function, and the rules of the datasets it reads."""
+    if kind == "table":
+        maker = producer(workflow.rules, TABLES[paper][name]["csv"])
+        return {"rule": maker.name, "script": script_name(maker)}
+    declared = FIGURES[paper][name]
+    return {
+        "rule": figure_rule(paper, name),
+        "script": "workflow/scripts/figures.py",
+        "function": f"rotorvib.papers.{paper}.figures.{declared['function']}",
+        "datasets": {
+            d: producer(workflow.rules, dataset(paper, d)).name
+            for d in dict.fromkeys(declared["datasets"].values())
+        },
+    }
+
+
+def script_name(rule):
+    """A rule's script, relative to the workflow's folder."""
+    return str(Path(script_path(rule)).resolve().relative_to(WORKFLOW_ROOT))
 
 
 def figure_groups():

@@ -6,7 +6,7 @@
 
 # A figure job is named for the first figure it draws (figures_b_fig8 draws Figs 8-10).
 for (_paper, _datasets), _names in figure_groups().items():
-    _rule = f"figures_{_paper}_{_names[0]}"
+    _rule = figure_rule(_paper, _names[0])
 
     rule:
         name:

@@ -35,6 +35,14 @@ rule report_text:
             for paper, figures in FIGURES.items()
         },
         tables=TABLES,
+        # the rule, script and function that made each, and the rules of its datasets
+        made_by={
+            kind: {
+                paper: {name: made_by(paper, name, kind) for name in outputs}
+                for paper, outputs in declared.items()
+            }
+            for kind, declared in (("figure", FIGURES), ("table", TABLES))
+        },
     message:
         "The report's landing page, summary, captions and table pages, from the comparison"
     script:

@@ -39,20 +39,21 @@ for paper, figures in snakemake.params.figures.items():
         report.write_caption(figure_captions[f"{paper}_{name}"], report.caption(
             f"Paper {paper.upper()}, {report.label(name)}", entry["shows"],
             report.rows_for(table, paper, name, "figure", tuple(entry["items"])), claims,
-            **drawn[f"{paper}_{name}"]))
+            made=snakemake.params.made_by["figure"][paper][name], **drawn[f"{paper}_{name}"]))
 for paper, entries in snakemake.params.tables.items():
     for name, entry in entries.items():
+        made = snakemake.params.made_by["table"][paper][name]
         csv_text = Path(entry["csv"]).read_text(encoding="utf-8")
         if paper == "all":  # the comparison and the discrepancy analysis: their totals
             title = report.label(name, "table").capitalize()
             text = report.caption(title, f"{entry['shows']} "
                                   f"{report.comparison_summary(table)} Discrepancy analysis: "
-                                  f"{discrepancy_totals}.")
+                                  f"{discrepancy_totals}.", made=made)
         else:
             title = f"Paper {paper.upper()}, {report.label(name, 'table')}"
             text = report.caption(title, entry["shows"] + report.check_counts(rows(entry["csv"])),
                                   report.rows_for(table, paper, name, "table",
-                                                  tuple(entry["items"])), claims)
+                                                  tuple(entry["items"])), claims, made=made)
         report.write_caption(table_captions[f"{paper}_{name}"], text)
         report.write(table_pages[f"{paper}_{name}"], report_pages.table_page(
             title, report_pages.rst_fragment(text), csv_text, Path(entry["csv"]).name))

@@ -107,10 +107,30 @@ def entry_label(name: str, kind: str, items: tuple[str, ...] = ()) -> str:
 BEYOND = "Beyond the paper"
 
 
+def in_order(names: list[str]) -> dict[str, str]:
+    """Each name as the report's sidebar shows it, opening with its place ("1 Summary"; zeros
+    before it where there are ten or more): the sidebar lists categories and subcategories
+    sorted by name, and the story has an order."""
+    width = len(str(len(names)))
+    return {name: f"{place:0{width}d} {name}" for place, name in enumerate(names, start=1)}
+
+
+def categories(papers) -> dict[str, str]:
+    """The report's categories in the story's order: the summary, each paper (``papers``:
+    their letters), the comparison; ``"Paper A"`` -> ``"2 Paper A"``."""
+    return in_order(["Summary", *(f"Paper {p.upper()}" for p in sorted(papers)), "Comparison"])
+
+
+#: A paper's subcategories in the story's order: its own figures and tables, then beyond it.
+SUBCATEGORIES = in_order(["Figures", "Tables", BEYOND])
+
+
 def subcategory(shows: str, kind: str) -> str:
-    """The report subcategory of a paper's output: "Figures" or "Tables" for the paper's own
-    items, :data:`BEYOND` for those whose declaration says they go beyond it."""
-    return BEYOND if shows.startswith(BEYOND) else {"figure": "Figures", "table": "Tables"}[kind]
+    """The report subcategory of a paper's output: "1 Figures" or "2 Tables" for the paper's
+    own items, "3 Beyond the paper" for those whose declaration says they go beyond it
+    (:data:`SUBCATEGORIES`)."""
+    name = BEYOND if shows.startswith(BEYOND) else {"figure": "Figures", "table": "Tables"}[kind]
+    return SUBCATEGORIES[name]
 
 
 def rows_for(table: list[dict], paper: str, name: str, kind: str = "figure",
@@ -152,14 +172,24 @@ def statement(row: dict, claim: str = "", lead: str = "") -> str:
     return f"- {lead} {rst_text(said)}.{says}{explanation}"
 
 
+def made_by_text(made: dict) -> str:
+    """How an output was made, from the workflow's rules: ``{"rule", "script"}``, with a
+    figure's ``"function"`` and ``"datasets"`` (dataset -> the rule that computed it)."""
+    text = f"rule {made['rule']} ({made['script']}"
+    text += f", {made['function']})" if "function" in made else ")"
+    if made.get("datasets"):
+        text += " from " + ", ".join(f"{d}.nc (rule {r})" for d, r in made["datasets"].items())
+    return text + "."
+
+
 def caption(title: str, shows: str, rows: list[dict] | None = None,
             claims: dict[tuple[str, str], str] | None = None, key: list[str] = (),
-            parameters: str = "") -> str:
+            parameters: str = "", made: dict | None = None) -> str:
     """A figure's or table's caption: its title, what it shows and what it draws beyond its
     legend's words (``key``, read off the figure: rotorvib.io.plotting.drawn_key), every
     comparison row that refers to it (``claims``: the paper's words for each quantity, from
-    the paper-values file; ``rows=None`` for a caption without statements), and the
-    parameters it depends on."""
+    the paper-values file; ``rows=None`` for a caption without statements), the parameters it
+    depends on and how it was made (``made``, :func:`made_by_text`)."""
     lines = [f"**{rst_text(title)}.** " + " ".join(rst_text(t) for t in (shows, *key)), ""]
     if rows:
         lines += ["What the paper states, against the reproduction:", ""]
@@ -170,6 +200,8 @@ def caption(title: str, shows: str, rows: list[dict] | None = None,
                   "adds to the reproduction."]
     if parameters:
         lines += ["", f"*Parameters.* {rst_text(parameters)}"]
+    if made:
+        lines += ["", f"*Made by* {rst_text(made_by_text(made))}"]
     return "\n".join(lines) + "\n"
 
 
@@ -238,7 +270,7 @@ TITLE = "rotorvib: three rotor-dynamics papers reproduced from first principles"
 
 def paper_entries(papers: dict) -> dict[str, dict[str, str]]:
     """The papers of ``data/papers.yaml`` as the report links them: each key one capital letter
-    (the report's category "Paper A" is a link target) and each entry a mapping of texts;
+    (the report's category "2 Paper A" is a link target) and each entry a mapping of texts;
     ``ValueError`` naming the entry otherwise."""
     for letter, entry in papers.items():
         if not (isinstance(letter, str) and re.fullmatch("[A-Z]", letter)):
@@ -260,10 +292,11 @@ def landing_page(table: list[dict], papers: dict[str, dict]) -> str:
              "about it.", "",
              "**Verdict totals**", ""]
     lines += [f"- {rst_text(group)}" for group in totals(table)]
-    lines += ["", "`Summary`_: the totals of each paper, the findings and the discrepancy "
-              "analysis. `Comparison`_: every row.", ""]
-    lines += [f"- `Paper {letter}`_: {rst_text(paper['title'])}"
-              for letter, paper in sorted(paper_entries(papers).items())]
+    named = categories(paper_entries(papers))
+    lines += ["", f"`{named['Summary']}`_: the totals of each paper, the findings and the "
+              f"discrepancy analysis. `{named['Comparison']}`_: every row.", ""]
+    lines += [f"- `{named[f'Paper {letter}']}`_: {rst_text(paper['title'])}"
+              for letter, paper in sorted(papers.items())]
     return "\n".join(lines) + "\n"
 
 
