@@ -9,7 +9,8 @@ joins each job's outputs, links a job to the jobs that made its inputs, and prin
   cores can shorten, and its share of the total;
 - the simulated makespan on 2, 4, 8, 16 and 64 cores (or ``--cores``): jobs started as their
   inputs are made, longest remaining chain first, with the durations measured; a batch job (a
-  rule declaring ``threads: BATCH_THREADS``, found in the rule files, :func:`batch_rules`) gets half the cores, as
+  rule declaring ``threads: BATCH_THREADS``, found in the rule files by
+  :func:`rotorvib.pipeline.slurm_profile.batch_rules`) gets half the cores, as
   the workflow gives it, and takes ``T (s + (1 - s) / threads)`` for its recorded time ``T``
   (Amdahl's law, ``s`` the serial share, ``--serial``), every other job one core.
 
@@ -33,9 +34,10 @@ import ast
 import base64
 import heapq
 import json
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from rotorvib.pipeline.slurm_profile import batch_rules
 
 METADATA = Path(".snakemake/metadata")
 RULES = Path("workflow/rules")
@@ -142,18 +144,6 @@ def critical_chain(jobs: list[Job]) -> tuple[float, list[Job]]:
     return max(tail, default=0.0), chain
 
 
-def batch_rules(rules: Path = RULES) -> set[str]:
-    """The rules that declare ``threads: BATCH_THREADS`` in the rule files: each ``rule X:``
-    block that says so, and both rules of each batch study of paper B's table
-    (``"X": batch_study(...)``, its rules ``X`` and ``X_shard``, paper_b.smk)."""
-    text = "".join(p.read_text() for p in sorted(rules.glob("*.smk")))
-    blocks = re.split(r"^(?=\S)", text, flags=re.M)      # each top-level statement
-    batch = {re.match(r"rule (\w+)", b).group(1) for b in blocks
-             if b.startswith("rule ") and "threads: BATCH_THREADS" in b}
-    studies = re.findall(r'^\s+"(\w+)": batch_study\(', text, flags=re.M)
-    return batch | {name + suffix for name in studies for suffix in ("", "_shard")}
-
-
 def on_cores(jobs: list[Job], cores: int, batch: set[str], serial: float) -> list[Job]:
     """The jobs as the workflow runs them on ``cores`` cores: a batch job on
     ``max(1, cores // 2)`` threads, its time by Amdahl's law with serial share ``serial``
@@ -206,7 +196,7 @@ def main(argv=None) -> None:
     if not jobs:
         raise SystemExit(f"no job records under {args.results}/: run the workflow first")
     total = sum(job.duration for job in jobs)
-    batch = batch_rules()
+    batch = set(batch_rules(RULES))
     length, chain = critical_chain(jobs)
     print(f"{len(jobs)} jobs under {args.results}/, total job time {total:.1f} s")
     print(f"critical chain, every job on one thread: {length:.1f} s = {length / total:.2f} of "

@@ -68,6 +68,7 @@ class View:
     table_rows: int = -1        # rows of the table inside an HTML result (-1: none)
     text: str = ""
     errors: list[str] = field(default_factory=list)
+    cells: list[list[str]] = field(default_factory=list)  # a DataTable's header, then its rows
 
 
 def _sidebar_links(page) -> list[str]:
@@ -122,10 +123,17 @@ def _shown(page, path: tuple[str, ...], errors: list[str], changed: bool) -> Vie
         view.kind = "html"
         content = frame.content_frame()
         content.wait_for_load_state()
+        if content.evaluate("() => !!document.querySelector('[id^=itables_]')"):
+            content.wait_for_selector("table.dataTable tbody tr")   # DataTables has drawn it
         view.table_rows = content.evaluate(
-            "() => document.querySelector('table') ? "
-            "document.querySelectorAll('table tbody tr').length : -1")
+            "() => { const t = document.querySelector('table.dataTable') || "
+            "document.querySelector('table'); "
+            "return t ? t.querySelectorAll('tbody tr').length : -1; }")
         view.text = content.evaluate("() => document.body.innerText")
+        view.cells = content.evaluate(
+            "() => { const t = document.querySelector('table.dataTable'); if (!t) return []; "
+            "const texts = row => [...row.cells].map(c => c.innerText.trim()); "
+            "return [texts(t.tHead.rows[0]), ...[...t.tBodies[0].rows].map(texts)]; }")
     errors.clear()
     return view
 

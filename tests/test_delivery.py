@@ -17,6 +17,7 @@ import yaml
 import report_browser
 from conftest import ROOT
 from ro_crate import validate_crate
+from rotorvib.paper_values import decimals
 from rotorvib.pipeline.archive import METADATA_DIR, digest_file, restore_archive, verify_archive
 from rotorvib.pipeline.report import SUBCATEGORIES, numbers_of_item, numbers_of_name
 from rotorvib.pipeline.report import categories as report_categories
@@ -54,6 +55,24 @@ def test_the_landing_page_reads_from_its_first_line(report, browser):
         assert seen.description[2] <= seen.rule_graph[0], seen  # beside the graph, not under
 
 
+def _numbers_as_precise_as_they_can_tell(cells: list[list[str]]):
+    """The comparison as a reader sees it: the paper's value and ours, the error and the verdict
+    among the first eight columns (inside a 1280 px window), every reproduced value to at most
+    two decimals more than the paper's, every other number to at most four significant digits
+    (the CSV download carries every digit)."""
+    head, *rows = cells
+    assert {"paper value", "reproduced", "relative error", "verdict"} <= set(head[:8]), head
+    paper, ours = head.index("paper value"), head.index("reproduced")
+    for row in rows:
+        for k, cell in enumerate(row):
+            if not re.fullmatch(r"-?\d+(\.\d+)?(e[-+]\d+)?", cell) or k == paper:
+                continue
+            if k == ours and row[paper]:
+                assert decimals(cell) <= decimals(row[paper]) + 2, (row[paper], cell)
+            else:
+                assert len(re.sub(r"e.*|[-.]", "", cell).strip("0")) <= 4, (head[k], cell)
+
+
 def test_every_view_of_the_report_opens_and_shows_its_result(report, browser):
     """Every category of the sidebar, every subcategory and every result's view button, clicked
     as a reader does: no page error, every figure shown as an image, every table as an HTML
@@ -74,6 +93,7 @@ def test_every_view_of_the_report_opens_and_shows_its_result(report, browser):
     assert tables["Discrepancies"].table_rows == len(
         read_comparison(work / "results/discrepancies.csv"))
     assert f"{len(comparison)} values and claims" in tables["Verdicts and findings"].text
+    _numbers_as_precise_as_they_can_tell(tables["Comparison"].cells)
     assert "Findings" in tables["Verdicts and findings"].text
     for paper in "bc":
         csv_rows = len(read_comparison(work / f"results/paper_{paper}/tables/table2.csv"))

@@ -56,7 +56,8 @@ def test_batch_jobs_take_half_the_cores_by_amdahls_law(metadata):
     """A batch job (a rule that declares BATCH_THREADS) on 8 cores runs on 4 threads: its
     recorded 4 s becomes 4 (0.1 + 0.9 / 4) = 1.3 s, and it takes 4 cores; other jobs keep
     theirs. The rule files name the batch rules, with the rules that use them."""
-    from benchmarks.makespan import batch_rules, on_cores
+    from benchmarks.makespan import on_cores
+    from rotorvib.pipeline.slurm_profile import batch_rules
 
     jobs = read_jobs("results", metadata)
     scaled = {j.rule: j for j in on_cores(jobs, 8, {"a"}, 0.1)}
@@ -66,20 +67,22 @@ def test_batch_jobs_take_half_the_cores_by_amdahls_law(metadata):
     assert simulated_makespan(list(scaled.values()), 8) == pytest.approx(5.0)
     # on 2 cores a batch job takes one thread, as recorded
     assert [j.duration for j in on_cores(jobs, 2, {"a"}, 0.1)] == [j.duration for j in jobs]
-    found = batch_rules(ROOT / "workflow/rules")
+    found = set(batch_rules(ROOT / "workflow/rules"))
     assert {"b_ga", "b_ga_shard", "b_table1_runs", "b_zeta_inversion"} <= found
     assert "comparison" not in found and "b_time_responses" not in found
 
 
 def test_the_slurm_profile_sets_the_threads_of_every_batch_rule_and_no_other():
-    """The SLURM profile's ``set-threads`` names exactly the rules that declare ``threads:
-    BATCH_THREADS`` (as this benchmark finds them in the rule files). Snakemake evaluates a
-    rule's threads again in a cluster job's own step, with that step's cores; only a
-    ``--set-threads`` crosses into it, so the profile carries them."""
+    """The SLURM profile's ``set-threads`` block is what rotorvib.pipeline.slurm_profile writes
+    from the rule files: exactly the rules that declare ``threads: BATCH_THREADS``, each with
+    more than one thread (a cluster job's step evaluates a rule's threads with its own cores,
+    and only a ``--set-threads`` crosses into it)."""
     import yaml
 
-    from benchmarks.makespan import batch_rules
+    from rotorvib.pipeline.slurm_profile import CLUSTER_THREADS, batch_rules, written
 
-    profile = yaml.safe_load((ROOT / "workflow/profiles/slurm/config.yaml").read_text())
-    assert set(profile["set-threads"]) == batch_rules()
-    assert all(threads >= 2 for threads in profile["set-threads"].values())
+    path = ROOT / "workflow/profiles/slurm/config.yaml"
+    rules = batch_rules(ROOT / "workflow/rules")
+    assert written(path.read_text(), rules) == path.read_text()
+    threads = yaml.safe_load(path.read_text())["set-threads"]
+    assert sorted(threads) == rules and set(threads.values()) == {CLUSTER_THREADS} != {1}

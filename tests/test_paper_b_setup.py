@@ -142,3 +142,23 @@ def test_curve_measures_order_a_censored_run_after_every_balanced_one():
     assert dip_depth([np.nan, 4.0, 5.0]) == 1.0
     assert within([0.12, 0.18], (0.1, 0.2)) == pytest.approx(0.02)
     assert within([0.05, 0.15], (0.1, 0.2)) == pytest.approx(-0.05)
+
+
+def test_tables_1_and_2_carry_the_papers_values_beside_ours_as_printed():
+    """Each column the paper prints gets the paper's value, as printed, just before ours; a
+    speed the paper does not print gets an empty cell."""
+    from rotorvib.papers.b.row_values import beside_printed
+
+    printed = {"table1_m_opt_220": "0.006", "table1_mean_time_220": "4.70",
+               "table2_fmax_1": "201.8", "table2_decay_1": "8.5"}
+    (t1, t1_unprinted) = beside_printed(
+        [{"speed_rad_s": 220.0, "m_opt_kg": 0.006, "mean_balance_time_s": 3.81},
+         {"speed_rad_s": 225.0, "m_opt_kg": 0.007, "mean_balance_time_s": 3.9}], "table1", printed)
+    assert list(t1) == ["speed_rad_s", "m_opt_paper_kg", "m_opt_kg",
+                        "mean_balance_time_paper_s", "mean_balance_time_s"]
+    assert (t1["m_opt_paper_kg"], t1["mean_balance_time_paper_s"]) == ("0.006", "4.70")
+    assert t1_unprinted["m_opt_paper_kg"] == ""
+    (t2,) = beside_printed([{"row": 1, "force_max_N": 201.9, "force_decay_time_s": 8.1}],
+                           "table2", printed)
+    assert t2 == {"row": 1, "force_max_paper_N": "201.8", "force_max_N": 201.9,
+                  "force_decay_time_paper_s": "8.5", "force_decay_time_s": 8.1}

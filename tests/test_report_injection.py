@@ -15,7 +15,7 @@ from docutils.core import publish_parts
 
 from conftest import ROOT
 from rotorvib.io.tables import write_table
-from rotorvib.pipeline import report, report_pages
+from rotorvib.pipeline import report, report_pages, report_tables
 
 
 @pytest.fixture
@@ -108,7 +108,7 @@ def test_a_tables_page_shows_its_cells_as_text(secret):
     csv_text = "name,value\n" + "".join(f'"{t.replace(chr(34), chr(34) * 2)}",1.5\n'
                                         for t in texts)
     caption = report_pages.rst_fragment(report.caption(texts[0], texts[4], None))
-    page = report_pages.table_page(texts[5], caption, csv_text, texts[4])
+    page = report_tables.table_page(texts[5], caption, csv_text, texts[4])
     assert_inert(page, secret)
     assert "&lt;img src=x onerror=alert(1)&gt;" in page
 

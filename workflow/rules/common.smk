@@ -76,9 +76,9 @@ CLOSE = config["comparison"]
 # Threads of a job that shares a batch of runs out over threads (paper B's batch studies,
 # rotorvib.models.balancer.simulate): half the cores Snakemake is given, so that -j2 runs two
 # single-threaded jobs side by side as it always did and a larger -j hands each batch job
-# several cores (the SLURM profile sets its own with set-threads, one entry for each rule that
-# declares these, tests/test_cluster.py). A command given no cores (--rulegraph, --lint) plans
-# with one.
+# several cores (the SLURM profile sets its own with set-threads, written for each rule that
+# declares these by rotorvib.pipeline.slurm_profile). A command given no cores (--rulegraph,
+# --lint) plans with one.
 try:
     BATCH_THREADS = max(1, int(workflow.cores) // 2)
 except (WorkflowError, TypeError):

@@ -345,6 +345,7 @@ rule b_tables:
         beta=dataset("b", "balance_beta"),
         mass=dataset("b", "balance_mass"),
         ga=rules.b_ga.output[0],
+        paper_values=PAPER_VALUES,
     output:
         table1=table("b", "table1", "csv"),
         table1_md=table("b", "table1", "md"),

@@ -8,7 +8,7 @@ import json
 from pathlib import Path
 
 from rotorvib import discrepancy
-from rotorvib.pipeline import report, report_pages
+from rotorvib.pipeline import report, report_pages, report_tables
 from rotorvib.pipeline.strict_yaml import load_yaml
 
 job.start(snakemake.log[0])
@@ -55,5 +55,5 @@ for paper, entries in snakemake.params.tables.items():
                                   report.rows_for(table, paper, name, "table",
                                                   tuple(entry["items"])), claims, made=made)
         report.write_caption(table_captions[f"{paper}_{name}"], text)
-        report.write(table_pages[f"{paper}_{name}"], report_pages.table_page(
+        report.write(table_pages[f"{paper}_{name}"], report_tables.table_page(
             title, report_pages.rst_fragment(text), csv_text, Path(entry["csv"]).name))

@@ -84,3 +84,28 @@ def table2_rows(forces: xr.Dataset, R: float, kinematics: str) -> list[dict]:
              "force_max_N": float(at.force_max[i]), "force_decay_time_s":
              float(at.force_decay_time[i]), "balance_time_s": float(at.balance_time[i])}
             for i, c in enumerate(at.case.values)]
+
+
+#: The columns of Tables 1-2 the paper prints, and the key of each row's printed value in
+#: data/paper_values.csv.
+PRINTED = {
+    "table1": {"m_opt_kg": "table1_m_opt_{speed_rad_s:g}",
+               "mean_balance_time_s": "table1_mean_time_{speed_rad_s:g}"},
+    "table2": {"force_max_N": "table2_fmax_{row}", "force_decay_time_s": "table2_decay_{row}"},
+}
+
+
+def beside_printed(rows: list[dict], table: str, printed: dict[str, str]) -> list[dict]:
+    """Each row of Table 1 or 2 (``table``) with the paper's value before each column it
+    prints, as printed (``printed``: paper B's values as printed, by key; empty where it prints
+    none): ``force_max_N`` gets ``force_max_paper_N`` before it."""
+    out = []
+    for row in rows:
+        wide = {}
+        for name, value in row.items():
+            if key := PRINTED[table].get(name):
+                base, _, unit = name.rpartition("_")
+                wide[f"{base}_paper_{unit}"] = printed.get(key.format(**row), "")
+            wide[name] = value
+        out.append(wide)
+    return out
