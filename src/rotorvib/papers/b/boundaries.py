@@ -26,6 +26,7 @@ import xarray as xr
 from scipy.optimize import brentq
 
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.variables import described
 from rotorvib.methods.continuation import (gradient, refine_turning_point, tangent, trace,
                                            turning_points)
 from rotorvib.papers.b.choices import BOUNDARY_CHOICES
@@ -176,6 +177,59 @@ def _crossings_at(x: float, parts: list, reach: float = 1e-3) -> list[float]:
     return found
 
 
+#: The boundary dataset's variables of fixed names, all dimensionless: (long name, units).
+BOUNDARY_VARIABLES = {
+    "omega_onset": ("speed ratio omega/omega_n on the curve Re lambda = 0", "1"),
+    "branch": ("branch of the traced curves (0, 1, ...: downwards in the parameter from the "
+               "start, then upwards, then each window)", "1"),
+    "curve": ("traced curve: 0 through the start, 1, 2, ...: a stable window found on the line "
+              "at the range's top", "1"),
+    "frequency": ("|Im lambda| / omega_n of the crossing eigenvalue (0: a real eigenvalue "
+                  "crosses)", "1"),
+    "crossing_real": ("Re lambda / omega_n of the crossing eigenvalue (continuation residual)",
+                      "1"),
+    "omega_error": ("error bound of the speed on the curve, |Re lambda| / |d Re lambda / d "
+                    "omega_bar|", "1"),
+    "others_growth": ("largest real part of the other eigenvalues / omega_n", "1"),
+    "on_boundary": ("the curve bounds the stable region here (every other eigenvalue stable)",
+                    "1"),
+    "critical_speed": ("undamped critical speed of disk and balls, sqrt(M/(M + n m)) "
+                       "(omega_bar)", "1"),
+    "asymptote_a": ("a = lim beta (omega_onset - critical speed) as beta grows, from exact "
+                    "onsets at beta = 1e3, 1e4, 1e5 extrapolated", "1"),
+    "asymptote_error": ("error bound of a: the two extrapolations apart", "1"),
+}
+
+
+def _plane_variables(plane: str, tangents, folds: dict, turns: dict, fixed: dict,
+                     start: float) -> dict:
+    """The boundary dataset's variables named or described by its plane: the tangent, the
+    folds and turning points in each coordinate, the fixed parameters and the start."""
+    one = {"units": "1"}
+    return {
+        "tangent": (("point", "component"), tangents,
+                    {"long_name": f"unit tangent in (log10 {plane}, omega_bar), in the "
+                                  "branch's sense of tracing", **one}),
+        **{f"fold_{name}": (f"fold_{name}", np.asarray(idx, dtype=np.int32),
+                            {"long_name": f"index of the point after which the curve turns "
+                                          f"back in {name}", **one})
+           for name, idx in folds.items()},
+        **{f"turn_{name}_{coord}": (f"fold_{name}", np.array(
+            [10.0 ** z[0] if coord == plane else z[1] for z, _ in turns[name]], dtype=float),
+            {"long_name": f"{coord} where the curve turns back in {name}, located by "
+                          "solving Re lambda = 0 with its tangency condition", **one})
+           for name in folds for coord in (plane, "omega_bar")},
+        **{f"turn_{name}_error": (f"fold_{name}", np.array([e for _, e in turns[name]],
+                                                            dtype=float),
+                                  {"long_name": f"error bound of that point in (log10 {plane}, "
+                                                "omega_bar)", **one})
+           for name in folds},
+        **{f"fixed_{k}": ((), float(v), {"long_name": PLANES.get(k, k), **one})
+           for k, v in fixed.items()},
+        "start": ((), float(start), {"long_name": f"{plane} at which tracing starts", **one}),
+    }
+
+
 def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_max: float,
                      step: dict, tol: float, neutral: float, window_samples: int,
                      n: int = 2) -> xr.Dataset:
@@ -223,61 +277,18 @@ def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_ma
     p, omega = 10.0 ** points[:, 0], points[:, 1]
     m_bar = p if plane == "m_bar" else np.full(p.shape, fixed["m_bar"])
     one = {"units": "1"}
+    variables = described({
+        "omega_onset": ("point", omega), "branch": ("point", branch),
+        "curve": ("point", curve_of), "frequency": ("point", np.abs(crossing.imag)),
+        "crossing_real": ("point", crossing.real), "omega_error": ("point", error),
+        "others_growth": ("point", others),
+        "on_boundary": ("point", (others < -neutral).astype(np.int8)),
+        "critical_speed": ("point", 1 / np.sqrt(1 + n * m_bar)),
+        **({"asymptote_a": ((), limit[0]), "asymptote_error": ((), limit[1])} if limit else {}),
+    }, {k: v for k, v in BOUNDARY_VARIABLES.items() if limit or not k.startswith("asymptote")})
+    variables["on_boundary"][2].update(flag_values=np.int8([0, 1]), flag_meanings="no yes")
     return xr.Dataset(
-        {"omega_onset": ("point", omega, {"long_name": "speed ratio omega/omega_n on the curve "
-                                                       "Re lambda = 0", **one}),
-         "branch": ("point", branch, {"long_name": "branch of the traced curves (0, 1, ...: "
-                                                    "downwards in the parameter from the "
-                                                    "start, then upwards, then each window)",
-                                      **one}),
-         "curve": ("point", curve_of, {"long_name": "traced curve: 0 through the start, 1, "
-                                                     "2, ...: a stable window found on the "
-                                                     "line at the range's top", **one}),
-         "frequency": ("point", np.abs(crossing.imag),
-                       {"long_name": "|Im lambda| / omega_n of the crossing eigenvalue (0: a "
-                                     "real eigenvalue crosses)", **one}),
-         "crossing_real": ("point", crossing.real,
-                           {"long_name": "Re lambda / omega_n of the crossing eigenvalue "
-                                         "(continuation residual)", **one}),
-         "omega_error": ("point", error,
-                         {"long_name": "error bound of the speed on the curve, |Re lambda| / "
-                                       "|d Re lambda / d omega_bar|", **one}),
-         "others_growth": ("point", others,
-                           {"long_name": "largest real part of the other eigenvalues / "
-                                         "omega_n", **one}),
-         "on_boundary": ("point", (others < -neutral).astype(np.int8),
-                         {"long_name": "the curve bounds the stable region here (every other "
-                                       "eigenvalue stable)", **one,
-                          "flag_values": np.int8([0, 1]), "flag_meanings": "no yes"}),
-         "critical_speed": ("point", 1 / np.sqrt(1 + n * m_bar),
-                            {"long_name": "undamped critical speed of disk and balls, "
-                                          "sqrt(M/(M + n m)) (omega_bar)", **one}),
-         "tangent": (("point", "component"), tangents,
-                     {"long_name": f"unit tangent in (log10 {plane}, omega_bar), in the "
-                                   "branch's sense of tracing", **one}),
-         **{f"fold_{name}": (f"fold_{name}", np.asarray(idx, dtype=np.int32),
-                             {"long_name": f"index of the point after which the curve turns "
-                                           f"back in {name}", **one})
-            for name, idx in folds.items()},
-         **{f"turn_{name}_{coord}": (f"fold_{name}", np.array(
-             [10.0 ** z[0] if coord == plane else z[1] for z, _ in turns[name]], dtype=float),
-             {"long_name": f"{coord} where the curve turns back in {name}, located by "
-                           "solving Re lambda = 0 with its tangency condition", **one})
-            for name in folds for coord in (plane, "omega_bar")},
-         **{f"turn_{name}_error": (f"fold_{name}", np.array([e for _, e in turns[name]],
-                                                             dtype=float),
-                                   {"long_name": f"error bound of that point in (log10 {plane}, "
-                                                 "omega_bar)", **one})
-            for name in folds},
-         **{f"fixed_{k}": ((), float(v), {"long_name": PLANES.get(k, k), **one})
-            for k, v in fixed.items()},
-         "start": ((), float(start), {"long_name": f"{plane} at which tracing starts", **one}),
-         **({"asymptote_a": ((), limit[0], {
-                 "long_name": "a = lim beta (omega_onset - critical speed) as beta grows, from "
-                              "exact onsets at beta = 1e3, 1e4, 1e5 extrapolated", **one}),
-             "asymptote_error": ((), limit[1], {
-                 "long_name": "error bound of a: the two extrapolations apart", **one})}
-            if limit else {})},
+        {**variables, **_plane_variables(plane, tangents, folds, turns, fixed, start)},
         coords={plane: ("point", p, {"long_name": PLANES[plane], **one}),
                 "component": ("component", np.array([f"log10 {plane}", "omega_bar"],
                                                     dtype=object),
