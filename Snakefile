@@ -5,9 +5,10 @@ from snakemake.utils import min_version
 min_version("9.0")
 
 
-# The defaults beside this Snakefile, wherever Snakemake runs (`--directory`); a module given
-# its own `config:` skips them and merges that over them (workflow/rules/common.smk).
-configfile: f"{workflow.basedir}/config/config.yaml"
+# The defaults beside this Snakefile, wherever Snakemake runs (`--directory`) and whichever file
+# it was given (workflow/Snakefile includes this one); a module given its own `config:` skips
+# them and merges that over them (workflow/rules/common.smk).
+configfile: f"{workflow.current_basedir}/config/config.yaml"
 
 
 include: "workflow/rules/common.smk"

@@ -130,3 +130,15 @@ def test_nested_command_line_overrides_are_read_as_yaml():
         "paper_c": {"den_hartog": {"d": 0.09}, "ga": {"seed": 7, "tol": 1e-9}},
         "paper_b": {"kinematics": ["printed", "consistent"]}, "top": 3}
     assert typed_overrides({"a": {"b": "[unclosed"}}) == {"a": {"b": "[unclosed"}}
+
+
+def test_every_shipped_configuration_reads_the_same_under_yaml_1_1():
+    """A workflow deployed by snakedeploy reads its copy of config/config.yaml with
+    Snakemake's loader (YAML 1.1, which reads 1.0e3 as text: it wants 1.0e+3); every shipped
+    configuration file gives the same values there as under this package's YAML 1.2 reading."""
+    import yaml
+
+    from rotorvib.pipeline.strict_yaml import load_yaml as strict
+
+    for path in sorted((ROOT / "config").rglob("*.yaml")):
+        assert yaml.safe_load(path.read_text()) == strict(path), path

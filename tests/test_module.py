@@ -1,4 +1,5 @@
-"""The workflow reused as others would: as a Snakemake ``module`` of another workflow, with the
+"""The workflow reused as others would: as a Snakemake ``module`` of another workflow (through
+``workflow/Snakefile``, the catalog's layout, and as ``snakedeploy`` deploys it), with the
 caller's own ``config:`` (merged over the shipped defaults and checked as strictly) and results
 folder, and run from another working directory (``--directory``). Every file the workflow
 reads of its own (the schema, the papers' data, the Snakefile) is found beside its rules, not
@@ -27,7 +28,7 @@ def _consumer(tmp_path, module_config: dict):
     (consumer / "Snakefile").write_text(
         'configfile: "config.yaml"\n\n\n'
         "module rotorvib:\n"
-        f'    snakefile: "{repo / "Snakefile"}"\n'
+        f'    snakefile: "{repo / "workflow/Snakefile"}"\n'
         '    config: config["rotorvib"]\n\n\n'
         "use rule * from rotorvib as rotorvib_*\n")
     return repo, consumer
@@ -68,3 +69,28 @@ def test_a_run_from_another_directory_finds_its_own_files(tmp_path):
             str(elsewhere / "reduced.yaml")]
     _snakemake(repo, "-j1", f"results/{TARGET}", *args)
     assert (elsewhere / "results" / TARGET).is_file() and not (repo / "results").exists()
+
+
+def test_snakedeploys_layout_runs_the_workflow_as_a_module(tmp_path):
+    """What a user of the workflow catalog does: ``snakedeploy deploy-workflow`` writes a
+    workflow of their own (its Snakefile naming ``workflow/Snakefile`` as a module, with their
+    copy of ``config/``); Snakemake, reading that copy with its own YAML loader, plans every job
+    of the paper configuration into their folder. For a local repository snakedeploy writes the
+    module's path relative to the new workflow; it is made the repository's, as ``github(...)``
+    would fetch it."""
+    repo = copy_repository(tmp_path / "rotorvib")
+    commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True, check=True).stdout.strip()
+    deployed = tmp_path / "analysis"
+    run = subprocess.run([str(BIN / "snakedeploy"), "deploy-workflow", str(ROOT), str(deployed),
+                          "--commit", commit, "--name", "rotorvib"], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    snakefile = deployed / "workflow/Snakefile"
+    text = snakefile.read_text()
+    assert 'snakefile: \n        "workflow/Snakefile"' in text and "use rule * from rotorvib" in text
+    snakefile.write_text(text.replace('"workflow/Snakefile"', f'"{repo / "workflow/Snakefile"}"'))
+    (deployed / "config/config.yaml").write_text((repo / "config/config.yaml").read_text())
+    plan = _snakemake(deployed, "-n", "-j1", "all")
+    assert "results/paper_c/figures/fig5.png" in plan.stdout and "c_ga" in plan.stdout
+    assert not (repo / "results").exists()
