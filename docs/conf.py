@@ -49,7 +49,7 @@ def write_outputs_table(app):
     import sys
 
     from rotorvib.outputs import PROJECT_TABLES
-    from rotorvib.pipeline.outputs_table import outputs_table, producers
+    from rotorvib.pipeline.outputs_table import outputs_rows, outputs_table, producers
 
     plan = subprocess.run([sys.executable, "-m", "snakemake", "--summary", "--nolock"],
                           cwd=ROOT, capture_output=True, text=True, check=True).stdout
@@ -57,14 +57,15 @@ def write_outputs_table(app):
     papers = {key.removeprefix("paper_"): section for key, section in config.items()
               if key.startswith("paper_")}
     declared = {p: importlib.import_module(f"rotorvib.papers.{p}.outputs") for p in papers}
-    _write(ROOT / "docs/_generated/outputs.md", outputs_table(
+    _write(ROOT / "docs/_generated/outputs.md", outputs_table(outputs_rows(
         producers(plan), {p: m.figures(papers[p]) for p, m in declared.items()},
-        {**{p: m.tables(papers[p]) for p, m in declared.items()}, "all": PROJECT_TABLES}))
+        {**{p: m.tables(papers[p]) for p, m in declared.items()}, "all": PROJECT_TABLES})))
 
 
 def write_api(app):
-    """docs/_generated/api.md: every module of the package with its public members, grouped by
-    package in the order of the layers (a module added to the package appears by itself)."""
+    """docs/api/<module>.md: a page per module of the package with its public members, and
+    docs/_generated/api.md: their table of contents, in the order of the layers (a module added
+    to the package appears by itself; the pages of modules that are gone are removed)."""
     import pkgutil
 
     import rotorvib
@@ -76,9 +77,14 @@ def write_api(app):
              "rotorvib.config_problems",
              "rotorvib.io", "rotorvib.pipeline"]
     modules.sort(key=lambda m: (next(i for i, p in enumerate(order) if m.startswith(p)), m))
-    text = "".join(f"## `{m}`\n\n```{{eval-rst}}\n.. automodule:: {m}\n   :members:\n```\n\n"
-                   for m in modules)
-    _write(ROOT / "docs/_generated/api.md", text)
+    pages = ROOT / "docs/api"
+    for stale in set(pages.glob("*.md")) - {pages / f"{m}.md" for m in modules}:
+        stale.unlink()
+    for m in modules:
+        _write(pages / f"{m}.md",
+               f"# `{m}`\n\n```{{eval-rst}}\n.. automodule:: {m}\n   :members:\n```\n")
+    _write(ROOT / "docs/_generated/api.md", "```{toctree}\n:maxdepth: 1\n\n"
+           + "".join(f"api/{m}\n" for m in modules) + "```\n")
 
 
 def _write(path: Path, text: str) -> None:

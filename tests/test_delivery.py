@@ -42,17 +42,29 @@ def report(run_dir, tmp_path_factory) -> Path:
     return work / "results/report.html"
 
 
+#: Every profile the repository ships, as a command names it (none: the default profile).
+PROFILES = {"default": [], "slurm": ["--workflow-profile", "workflow/profiles/slurm"]}
+
+
 def test_the_landing_page_reads_from_its_first_line(report, browser):
-    """At three window sizes, the report opens with its title and the verdict totals inside the
-    window (nothing above or left of it, where no scroll bar reaches), beside the rule graph and
-    not under it; a screenshot of each is kept (report_browser.SCREENSHOTS)."""
-    for width, height in report_browser.SIZES:
-        seen = report_browser.landing(browser, report, width, height,
-                                      report_browser.SCREENSHOTS / f"landing_{width}x{height}.png")
-        for part in (seen.title, seen.totals):
-            left, top, right, bottom = part
-            assert left >= 0 and top >= 0 and right <= width and bottom <= height, (seen, part)
-        assert seen.description[2] <= seen.rule_graph[0], seen  # beside the graph, not under
+    """At three window sizes, the report (built under every shipped profile: a
+    --workflow-profile replaces the default one) opens with its title and the verdict totals
+    inside the window (nothing above or left of it, where no scroll bar reaches), beside the rule
+    graph and not under it, and lists its categories in the story's order; a screenshot of each
+    is kept (report_browser.SCREENSHOTS)."""
+    work = report.parents[1]
+    for profile, options in PROFILES.items():
+        built = work / f"results/report_{profile}.html"
+        snakemake(work, "--report", str(built.relative_to(work)), *REDUCED, *options)
+        for width, height in report_browser.SIZES:
+            shot = report_browser.SCREENSHOTS / f"landing_{profile}_{width}x{height}.png"
+            seen = report_browser.landing(browser, built, width, height, shot)
+            for part in (seen.title, seen.totals):
+                left, top, right, bottom = part
+                assert left >= 0 and top >= 0 and right <= width and bottom <= height, (
+                    profile, seen, part)
+            assert seen.description[2] <= seen.rule_graph[0], (profile, seen)
+        assert report_browser.sidebar(browser, built) == list(report_categories("abc").values())
 
 
 def _numbers_as_precise_as_they_can_tell(cells: list[list[str]]):
@@ -155,6 +167,10 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
     assert {"results/paper_c/datasets/ga.nc", "LICENSE", "CITATION.cff", "Snakefile",
             "results/run/config.yaml", "results/run/commit.txt",
             "config/test/config.yaml", "ro-crate-metadata.json"} <= set(members)
+    for kind in ("png", "svg", "json"):  # every figure in both formats, with what it draws
+        figures = {p.relative_to(work).as_posix()
+                   for p in (work / "results").glob(f"paper_*/figures/*.{kind}")}
+        assert figures and figures <= set(members), kind
     fresh = copy_repository(tmp_path / "fresh")
     published = digest_file(archive).read_text().split()[0]
     restored = restore_archive(archive, published, fresh)

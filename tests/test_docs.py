@@ -2,6 +2,7 @@
 example in it runs, and what it says of the code is what the code is."""
 
 import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -37,7 +38,9 @@ def test_the_documentation_builds_with_warnings_as_errors(built):
     site, build = built
     assert build.returncode == 0, build.stdout + build.stderr
     assert "paper_c.rotor.M" in (site / "configuration.html").read_text()
-    assert "rotorvib.models.balancer.simulate.run_batch" in (site / "api.html").read_text()
+    simulate = site / "api/rotorvib.models.balancer.simulate.html"   # a page per module
+    assert "rotorvib.models.balancer.simulate.run_batch" in simulate.read_text()
+    assert 'href="api/rotorvib.models.balancer.simulate.html"' in (site / "api.html").read_text()
 
 
 def _python_blocks():
@@ -152,7 +155,7 @@ def test_the_outputs_table_names_every_result_and_the_rules_that_make_it(run_dir
 
     from rotorvib.outputs import PROJECT_TABLES
     from rotorvib.pipeline.config import merge
-    from rotorvib.pipeline.outputs_table import outputs_table, producers
+    from rotorvib.pipeline.outputs_table import outputs_rows, outputs_table, producers
     from workflow_runs import REDUCED, job_records, snakemake
 
     plan = producers(snakemake(run_dir, "--summary", *REDUCED).stdout)
@@ -162,14 +165,14 @@ def test_the_outputs_table_names_every_result_and_the_rules_that_make_it(run_dir
     outputs = {p: import_module(f"rotorvib.papers.{p}.outputs") for p in papers}
     figures = {p: m.figures(papers[p]) for p, m in outputs.items()}
     tables = {**{p: m.tables(papers[p]) for p, m in outputs.items()}, "all": PROJECT_TABLES}
-    rows = [[cell.strip() for cell in re.split(r"(?<!\\)\|", row.strip("|"))]
-            for row in outputs_table(plan, figures, tables).splitlines()[2:]]
+    rows = outputs_rows(plan, figures, tables)
     made_by = {f: r["rule"] for r in job_records(run_dir) for f in r["output"]}
     named = set()
-    for _, _, _, rules, files in rows:
-        paths = re.findall(r"`([^`]+)`", files)
-        assert set(re.findall(r"`(\w+)`", rules)) == {made_by[f] for f in paths}, rules
+    for _, _, rules, paths in rows:
+        assert set(rules) == {made_by[f] for f in paths}, rules
         named |= set(paths)
+    written = outputs_table(rows)
+    assert written.count("\n* - ") == len(rows) + 1 and "`paper_c/figures/fig5.png`" in written
     made = {p.relative_to(run_dir).as_posix()
             for kind in ("datasets", "figures") for ext in ("nc", "png")
             for p in (run_dir / "results").glob(f"paper_*/{kind}/*.{ext}")}
@@ -177,3 +180,26 @@ def test_the_outputs_table_names_every_result_and_the_rules_that_make_it(run_dir
     assert {p for p in named if not (run_dir / p).exists()} == set()
     declared = sum(map(len, figures.values())) + sum(map(len, tables.values()))
     assert len(rows) >= declared
+
+
+def test_the_tutorials_commands_are_accepted():
+    """Every ``snakemake`` command of the tutorial, as a dry run: the reduced run and the one
+    with a parameter changed are accepted, the refused value stops before any job naming its key
+    (the report's command needs a finished run and is left to the delivery tests)."""
+    text = (DOCS / "tutorial.md").read_text()
+    commands = [line.strip() for block in re.findall(r"```bash\n(.*?)```", text, re.S)
+                for line in block.splitlines() if line.strip().startswith("snakemake")]
+    commands.append("snakemake -j1 --configfile config/config.yaml config/test/config.yaml "
+                    + re.search(r"`(--config paper_c='\{rotor: \{M: -5\}\}')`", text).group(1))
+    assert len(commands) == 4
+    for command in commands:
+        if "--report" in command:
+            continue
+        args = shlex.split(command)[1:]
+        run = subprocess.run([str(Path(sys.executable).parent / "snakemake"), "-n", *args],
+                             cwd=ROOT, capture_output=True, text=True)
+        if "M: -5" in command:
+            assert run.returncode != 0 and "config key 'paper_c.rotor.M'" in run.stdout, command
+        else:
+            planned = "Job stats" in run.stdout or "Nothing to be done" in run.stdout
+            assert run.returncode == 0 and planned, run.stdout + run.stderr

@@ -1,4 +1,5 @@
-# `snakemake -j2 archive`: one tarball of every dataset, table and figure, the report's words
+# `snakemake -j2 archive`: one tarball of every dataset, table and figure (PNG, SVG and what it
+# draws), the report's words
 # and pages, the run's record (commit and configuration), the licence and the citation file,
 # with a SHA-256 manifest, restore notes and an RO-Crate describing the run (rotorvib.pipeline.crate);
 # two builds of one commit and configuration give the same bytes (rotorvib.pipeline.archive). The HTML
@@ -29,7 +30,7 @@ rule run_record:
 
 rule archive:
     input:
-        results=all_results(),
+        results=all_results() + figure_companions(),
         configuration=list(RUN_RECORD.values()) + configuration_files(),
         code=[source(name) for name in ("Snakefile", "LICENSE", "CITATION.cff")],
     output:

@@ -352,6 +352,17 @@ def all_results():
     )
 
 
+def figure_companions():
+    """Each figure's vector copy (svg) and what it draws and depends on (json): made with its
+    PNG by the figure job, and archived with it."""
+    return [
+        figure_file(paper, name, ext)
+        for paper in FIGURES
+        for name in FIGURES[paper]
+        for ext in ("svg", "json")
+    ]
+
+
 def report_text_files():
     """The report's landing page, its summary page, the captions of every figure and table
     and the HTML page of every table."""

@@ -24,41 +24,53 @@ def _first_sentence(text: str) -> str:
     return re.split(r"(?<=\.)\s+(?=[A-Z])", text, maxsplit=1)[0]
 
 
-def _row(paper: str, item: str, shows: str, files: list[str], made: dict[str, str]) -> str:
-    """A row of the table; a ``|`` in a text is escaped (it would end the cell)."""
-    shows = _first_sentence(shows).replace("|", "\\|")
-    rules = ", ".join(f"`{r}`" for r in dict.fromkeys(made[f] for f in files))
-    paths = ", ".join(f"`{f}`" for f in files)
-    who = "all" if paper == "all" else paper.upper()
-    return f"| {who} | {item} | {shows} | {rules} | {paths} |"
+def _row(paper: str, item: str, shows: str, files: list[str],
+         made: dict[str, str]) -> tuple[str, str, list[str], list[str]]:
+    """A row: the paper item, the first sentence of what it shows, the rules that make its
+    files (by :func:`producers`) and the files."""
+    who = "All papers" if paper == "all" else paper.upper()
+    return (f"{who}, {item}", _first_sentence(shows),
+            list(dict.fromkeys(made[f] for f in files)), files)
 
 
-def outputs_table(made: dict[str, str], figures: dict, tables: dict,
-                  results: str = "results") -> str:
-    """A Markdown table, a row per figure and table declared (``figures`` and ``tables``:
-    ``{paper: {name: declaration}}``, ``"all"`` for the whole project's tables): the paper
-    item, what it shows, the rules that make it and the datasets it is drawn from, and its
-    files; then a row per dataset no declaration names. ``made`` is :func:`producers` of the
-    same configuration's plan."""
-    lines = ["| paper | item | what it shows | rules | files |", "|---|---|---|---|---|"]
-    listed: set[str] = set()
+def outputs_rows(made: dict[str, str], figures: dict, tables: dict,
+                 results: str = "results") -> list[tuple[str, str, list[str], list[str]]]:
+    """A row per figure and table declared (``figures`` and ``tables``: ``{paper: {name:
+    declaration}}``, ``"all"`` for the whole project's tables): the paper item, what it shows,
+    the rules that make it and the datasets it is drawn from, and its files; then a row per
+    dataset no declaration names. ``made`` is :func:`producers` of the same configuration's
+    plan."""
+    rows, listed = [], set()
     for paper in sorted(figures.keys() | tables.keys(), key=lambda p: (p == "all", p)):
         folder = results if paper == "all" else f"{results}/paper_{paper}"
         for name, figure in figures.get(paper, {}).items():
             files = [f"{folder}/datasets/{d}.nc"
                      for d in dict.fromkeys(figure["datasets"].values())]
             files.append(f"{folder}/figures/{name}.png")
-            lines.append(_row(paper, label(name), figure["shows"], files, made))
+            rows.append(_row(paper, label(name), figure["shows"], files, made))
             listed.update(files)
         for name, table in tables.get(paper, {}).items():
             where = folder if paper == "all" else f"{folder}/tables"
             files = [f"{where}/{name}.{ext}" for ext in ("csv", "md")]
-            lines.append(_row(paper, label(name, "table"), table["shows"], files, made))
+            rows.append(_row(paper, label(name, "table"), table["shows"], files, made))
             listed.update(files)
     for path in sorted(made):
         parts = path.split("/")
         if path not in listed and len(parts) == 4 and parts[2] == "datasets":
-            lines.append(_row(parts[1].removeprefix("paper_"),
-                              parts[3].removesuffix(".nc").replace("_", " "),
-                              "A dataset no figure draws.", [path], made))
-    return "\n".join(lines) + "\n"
+            rows.append(_row(parts[1].removeprefix("paper_"),
+                             parts[3].removesuffix(".nc").replace("_", " "),
+                             "A dataset no figure draws.", [path], made))
+    return rows
+
+
+def outputs_table(rows: list[tuple[str, str, list[str], list[str]]],
+                  results: str = "results") -> str:
+    """The rows (:func:`outputs_rows`) as a MyST list table, its columns sized to their
+    contents; the files relative to ``results``."""
+    lines = ["```{list-table}", ":header-rows: 1", ":widths: 12 44 18 26", "",
+             "* - item", "  - what it shows", "  - rules", f"  - files (under `{results}/`)"]
+    for item, shows, rules, files in rows:
+        lines += [f"* - {item}", f"  - {shows}",
+                  "  - " + ", ".join(f"`{r}`" for r in rules),
+                  "  - " + ", ".join(f"`{f.removeprefix(results + '/')}`" for f in files)]
+    return "\n".join(lines + ["```"]) + "\n"
