@@ -175,31 +175,43 @@ def check_shape(text: str, name: str) -> None:
             raise ConfigError(f"{_at(name, event)}: its aliases expand to more than "
                               f"{MAX_NODES:.0e} values; at most {MAX_NODES:.0e}")
 
-    try:
-        for event in yaml.parse(_named(text, name), Loader=FastStrictLoader):
-            if isinstance(event, yaml.AliasEvent):
-                if any(frame[1] == event.anchor for frame in frames):
-                    raise ConfigError(f"{_at(name, event)}: alias *{event.anchor} inside the "
-                                      "value it names (a value cannot contain itself)")
-                add(sizes.get(event.anchor, 1), event)
-            elif isinstance(event, yaml.ScalarEvent):
-                add(1, event)
-                if event.anchor is not None:
-                    sizes[event.anchor] = 1
-            elif isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
-                if len(frames) >= MAX_DEPTH:
-                    raise ConfigError(f"{_at(name, event)}: nested more than {MAX_DEPTH} "
-                                      "levels deep")
-                add(1, event)
-                frames.append([0, event.anchor])
-            elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
-                size, anchor = frames.pop()
-                if frames:
-                    frames[-1][0] += size
-                if anchor is not None:
-                    sizes[anchor] = size + 1
-    except yaml.YAMLError:
-        return
+    for loader in (FastStrictLoader, StrictLoader):
+        frames.clear()
+        sizes.clear()
+        total = 0
+        try:
+            for event in yaml.parse(_named(text, name), Loader=loader):
+                _shape_event(event, frames, sizes, add, name)
+            return
+        except yaml.YAMLError:
+            # libyaml refuses deep nesting while it scans ahead, before the events that would
+            # show where (a flow nesting past its own limit): walk the Python parser's events
+            continue
+
+
+def _shape_event(event, frames: list[list], sizes: dict[str, int], add, name: str) -> None:
+    """One parser event of :func:`check_shape`."""
+    if isinstance(event, yaml.AliasEvent):
+        if any(frame[1] == event.anchor for frame in frames):
+            raise ConfigError(f"{_at(name, event)}: alias *{event.anchor} inside the "
+                              "value it names (a value cannot contain itself)")
+        add(sizes.get(event.anchor, 1), event)
+    elif isinstance(event, yaml.ScalarEvent):
+        add(1, event)
+        if event.anchor is not None:
+            sizes[event.anchor] = 1
+    elif isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+        if len(frames) >= MAX_DEPTH:
+            raise ConfigError(f"{_at(name, event)}: nested more than {MAX_DEPTH} "
+                              "levels deep")
+        add(1, event)
+        frames.append([0, event.anchor])
+    elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+        size, anchor = frames.pop()
+        if frames:
+            frames[-1][0] += size
+        if anchor is not None:
+            sizes[anchor] = size + 1
 
 
 def _load(stream, loader) -> Any:
