@@ -46,16 +46,16 @@ def test_the_key_says_what_is_drawn_and_nothing_that_is_not():
     fig, ax = figure()
     ax.plot([0, 1], [0, 1], "-", label="IC1, printed")
     ax.plot([0, 1], [1, 0], "--", label="IC1, consistent")
-    ax.legend()
+    ax.legend(loc="center")              # over the lines
     assert drawn_key(fig) == ["Solid lines: the paper's printed kinematics (the reproduction); "
                               "dashed: the consistent kinematics."]
     paper_vline(ax, 0.5, "9.04 s")
-    ax.legend()
+    ax.legend(loc="center")              # over the lines
     assert drawn_key(fig)[0] == "The paper's values drawn (legend \"paper\"): 9.04 s."
     bare, ax = figure()
     ax.plot([0, 1], [0, 1], "--", label="IC1, printed")   # not the styles the key would claim
     ax.plot([0, 1], [1, 0], "--", label="IC1, consistent")
-    ax.legend()
+    ax.legend(loc="center")              # over the lines
     assert drawn_key(bare) == []
 
 
@@ -136,3 +136,29 @@ def test_the_uncertainty_figure_counts_runs_without_a_time_apart_and_draws_resol
     assert sum(bar.get_height() for bars in times.containers for bar in bars) == 3
     assert times.get_title() == "no time by t_end: 1 of 4"
     assert fig.axes[3].get_title() == "3 of 4 input points balance"
+
+
+def test_a_saved_figure_shows_symbols_plain_log_labels_and_its_legend_off_the_data(tmp_path):
+    """save() writes the words' symbols as mathtext (the caption keeps the words), labels a
+    short log axis's minor ticks as plain numbers, and moves below the axes a legend that
+    covers a drawn line, so that no point of any line lies under it."""
+    from rotorvib.io.plotting import figure, save, symbols
+
+    assert symbols("frequency ratio w = omega/omega_n") == (
+        r"frequency ratio w = $\omega$/$\omega_n$")
+    assert symbols("eps/R = 0.007, beta = 0.2") == r"$\varepsilon$/R = 0.007, $\beta$ = 0.2"
+    assert symbols("multiple-scales, betas, $x$ beta") == "multiple-scales, betas, $x$ beta"
+    fig, ax = figure()
+    x = np.linspace(0, 1, 200)
+    for k in range(6):                       # lines everywhere: the legend covers some
+        ax.semilogy(x, 20 + 50 * x ** (k + 1), label=f"beta = {k}")
+    ax.set_xlabel("omega/omega_n")
+    ax.legend(loc="center")              # over the lines
+    save(fig, tmp_path / "f.png")
+    assert ax.xaxis.label.get_text() == r"$\omega$/$\omega_n$"
+    assert [t.get_text() for t in ax.get_legend().get_texts()][0] == r"$\beta$ = 0"
+    minor = [t.get_text() for t in ax.yaxis.get_ticklabels(minor=True) if t.get_text()]
+    assert minor and all(re.fullmatch(r"\d+", t) for t in minor), minor
+    box = ax.get_legend().get_window_extent()
+    assert not any(box.contains(px, py) for line in ax.get_lines()
+                   for px, py in line.get_transform().transform(line.get_xydata()))

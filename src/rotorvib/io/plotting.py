@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.image import imsave  # noqa: E402
 from matplotlib.legend import Legend  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
-from matplotlib.ticker import MaxNLocator  # noqa: E402
+from matplotlib.ticker import LogFormatter, LogFormatterSciNotation, MaxNLocator  # noqa: E402
 
 STYLE = {
     "figure.figsize": (7.0, 4.3),
@@ -28,6 +28,18 @@ STYLE = {
     "figure.constrained_layout.use": True,
 }
 PAPER_STYLE = {"color": "crimson", "linestyle": "--", "linewidth": 1.2}
+#: The symbols the figures' texts name in words, and how a saved figure shows them (mathtext).
+#: A figure is drawn with the words, which its caption quotes (:func:`drawn_key`); :func:`save`
+#: sets the symbols.
+SYMBOLS = {"omega_bar": r"\bar\omega", "omega_n": r"\omega_n", "omega_c": r"\omega_c",
+           "Omega": r"\Omega",
+           "omega": r"\omega", "eps_bar": r"\bar\varepsilon", "m_bar": r"\bar m",
+           "Gamma0": r"\Gamma_0", "Theta": r"\Theta", "theta": r"\theta", "beta": r"\beta",
+           "sigma": r"\sigma", "zeta": r"\zeta", "mu": r"\mu", "rho": r"\rho",
+           "lambda": r"\lambda", "eps": r"\varepsilon", "phi": r"\phi", "k_t": "k_t",
+           "inf": r"\infty", "tau": r"\tau", "w_n": r"\omega_n"}
+_SYMBOL = re.compile(r"(?<![\w$\\])(" + "|".join(sorted(SYMBOLS, key=len, reverse=True))
+                     + r")(?!\w)")
 
 
 def figure(nrows: int = 1, ncols: int = 1, **kwargs):
@@ -162,17 +174,75 @@ def _fix_layout(fig) -> None:
         fig.set_layout_engine(None)
 
 
+def symbols(text: str) -> str:
+    """``text`` with each symbol's name as the symbol (:data:`SYMBOLS`): "omega/omega_n" ->
+    "$\\omega$/$\\omega_n$"; a text that holds mathtext already is left as it is."""
+    if "$" in text:
+        return text
+    return _SYMBOL.sub(lambda m: f"${SYMBOLS[m.group(1)]}$", text)
+
+
+def _texts(fig) -> list[Text]:
+    """Every text of a figure: titles, axis labels, legends, annotations (tick labels too,
+    which their formatters write again as the figure is drawn)."""
+    return fig.findobj(match=Text)
+
+
+def _plain_log_ticks(fig) -> None:
+    """A log axis's minor labels as plain numbers ("40"), not "4x10^1"; its decades keep
+    their powers of ten. Insets included."""
+    for ax in fig.axes + [inset for ax in fig.axes for inset in ax.child_axes]:
+        for axis in (ax.xaxis, ax.yaxis):
+            if (axis.get_scale() == "log"
+                    and isinstance(axis.get_minor_formatter(), LogFormatterSciNotation)):
+                axis.set_minor_formatter(LogFormatter(labelOnlyBase=False))
+
+
+def _legends_off_the_data(fig) -> bool:
+    """Move below its axes each legend that covers a point of a drawn line, in as many columns
+    (at most three) as its axes' width holds, the figure made taller by the legend's height
+    so that the axes keep theirs; whether one moved (the figure must be drawn again)."""
+    moved = False
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None or legend.get_bbox_to_anchor() is not ax.bbox:
+            continue                                # placed on purpose: left where it is
+        box = legend.get_window_extent()
+        covered = any(box.contains(x, y) for line in ax.get_lines() if line.get_visible()
+                      for x, y in line.get_transform().transform(line.get_xydata())
+                      if np.isfinite(x) and np.isfinite(y))
+        if not covered:
+            continue
+        handles, labels = ax.get_legend_handles_labels()
+        ncol = max(1, min(3, len(labels), int(ax.bbox.width // box.width)))
+        rows = -(-len(labels) // ncol)
+        width, height = fig.get_size_inches()
+        fig.set_size_inches(width, height + box.height * rows / len(labels) / fig.dpi + 0.3)
+        ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol)
+        moved = True
+    return moved
+
+
 def save(fig, path: str | Path) -> Path:
     """Save as PNG and, beside it, as SVG (a vector copy for papers), both without timestamps
     (byte-stable for equal content), and close. The figure is laid out once, as the PNG's
     canvas is drawn; the PNG is that canvas and the SVG keeps its layout (``savefig`` would
     lay the figure out in a pass of its own first, each time). A figure with a text beyond its
     canvas (a title wider than the figure) is saved cropped to all it draws
-    (``bbox_inches="tight"``) instead, in both formats."""
+    (``bbox_inches="tight"``) instead, in both formats. What a reader reads shows the symbols
+    (:func:`symbols`), a log axis's minor labels plain numbers, and a legend that covers a drawn
+    line moves below its axes."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with plt.rc_context(STYLE):
+        for text in _texts(fig):
+            text.set_text(symbols(text.get_text()))
+        _plain_log_ticks(fig)
         fig.canvas.draw()
+        if _legends_off_the_data(fig):
+            for text in _texts(fig):
+                text.set_text(symbols(text.get_text()))
+            fig.canvas.draw()
         crop = {} if _texts_on_canvas(fig) else {"bbox_inches": "tight"}
         if crop:
             fig.savefig(path, metadata={"Software": None}, **crop)

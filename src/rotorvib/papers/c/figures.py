@@ -73,7 +73,7 @@ def linearisation(tr, paper):
 
 def fig5(fr, paper):
     """Fig 5: frequency response without absorber, Table 2 undamped and damped, GA optimum."""
-    fig, ax = figure(figsize=(7.4, 5.6))      # wide enough for the legend's two columns
+    fig, ax = figure(figsize=(7.4, 7.4))      # tall enough for the legend's column below
     w = fr.w.values
     ax.semilogy(w, fr.D_none.values, "k", lw=1, label="no absorber")
     undamped = ax.semilogy(w, fr.D_table2_undamped.values, lw=1, label="Table 2, zero damping")
@@ -104,7 +104,8 @@ def fig5(fr, paper):
             ax.annotate("", xy=(edge, pd), xytext=(edge + (0.06 if pw < w[0] else -0.06), pd),
                         arrowprops={"arrowstyle": "->", "color": color})
             ax.plot([], [], "v", color=color, label=text + " (outside the band)")
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=8)
+    # one column: two would be wider than the axes, which the layout would narrow to fit them
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1, fontsize=8)
     return fig
 
 
