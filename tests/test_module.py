@@ -79,12 +79,17 @@ def test_snakedeploys_layout_runs_the_workflow_as_a_module(tmp_path):
     module's path relative to the new workflow; it is made the repository's, as ``github(...)``
     would fetch it."""
     repo = copy_repository(tmp_path / "rotorvib")
-    commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
+    # what a deployment fetches: the repository's last commit (snakedeploy copies a local
+    # repository's whole folder, environments and results included, so it is given a clone)
+    published = tmp_path / "published"
+    subprocess.run(["git", "clone", "--quiet", "--depth", "1", ROOT.as_uri(), str(published)],
+                   check=True, timeout=300)
+    commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=published, capture_output=True,
                             text=True, check=True).stdout.strip()
     deployed = tmp_path / "analysis"
-    run = subprocess.run([str(BIN / "snakedeploy"), "deploy-workflow", str(ROOT), str(deployed),
-                          "--commit", commit, "--name", "rotorvib"], capture_output=True,
-                         text=True, timeout=300)
+    run = subprocess.run([str(BIN / "snakedeploy"), "deploy-workflow", str(published),
+                          str(deployed), "--commit", commit, "--name", "rotorvib"],
+                         capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr
     snakefile = deployed / "workflow/Snakefile"
     text = snakefile.read_text()
