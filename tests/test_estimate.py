@@ -68,3 +68,9 @@ def test_the_counts_are_the_runs_the_workflow_makes(run_dir, tmp_path):
     assert all(c.cpu_per_run > 0 and c.runs >= c.counted for c in costs.values())
     text = estimate.report(list(costs.values()), estimate.benchmark_cpu(folder), 2)
     assert f"run-ups: {sum(c.runs for c in costs.values())};" in text
+    for cost in costs.values():    # real work never reads as 0.0: uncounted jobs ran for real
+        line = next(row for row in text.splitlines() if row.startswith(cost.dataset + " "))
+        if cost.counted:
+            assert float(line.split()[-1]) > 0, line
+        else:
+            assert line.endswith("in the rest"), line

@@ -208,12 +208,14 @@ def counting_pass(root: Path, configfiles: list[str], cores: int, results: str,
 
 
 def report(costs: list[JobCost], rest: float, cores: int) -> str:
-    """The estimate as text: a line per job, the totals."""
+    """The estimate as text: a line per job, the totals. A job whose batches all ran for real
+    in the counting pass (none counted) shows no CPU of its own: it is in the rest, which the
+    pass measured, not 0."""
     width = max([len(c.dataset) for c in costs] + [7])
     lines = [f"{'dataset':<{width}}  {'run-ups':>10}  {'counted':>10}  {'CPU-s/run-up':>12}  "
-             f"{'CPU-s':>10}"]
+             f"{'CPU-s':>11}"]
     lines += [f"{c.dataset:<{width}}  {c.runs:>10d}  {c.counted:>10d}  {c.cpu_per_run:>12.2e}  "
-              f"{c.cpu:>10.1f}" for c in costs]
+              + (f"{c.cpu:>11.3g}" if c.counted else f"{'in the rest':>11}") for c in costs]
     runs, cpu = sum(c.runs for c in costs), sum(c.cpu for c in costs)
     total = cpu + rest
     lines += [f"run-ups: {runs}; the counted ones {cpu:.1f} CPU-s; the rest of paper B "
