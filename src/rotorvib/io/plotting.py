@@ -198,6 +198,12 @@ def _plain_log_ticks(fig) -> None:
                 axis.set_minor_formatter(LogFormatter(labelOnlyBase=False))
 
 
+def _covers(box, line) -> bool:
+    """Whether window box ``box`` holds a point of ``line`` (in display coordinates)."""
+    x, y = line.get_transform().transform(line.get_xydata()).T
+    return bool(np.any((x >= box.x0) & (x <= box.x1) & (y >= box.y0) & (y <= box.y1)))
+
+
 def _legends_off_the_data(fig) -> bool:
     """Move below its axes each legend that covers a point of a drawn line, in as many columns
     (at most three) as its axes' width holds, the figure made taller by the legend's height
@@ -208,10 +214,7 @@ def _legends_off_the_data(fig) -> bool:
         if legend is None or legend.get_bbox_to_anchor() is not ax.bbox:
             continue                                # placed on purpose: left where it is
         box = legend.get_window_extent()
-        covered = any(box.contains(x, y) for line in ax.get_lines() if line.get_visible()
-                      for x, y in line.get_transform().transform(line.get_xydata())
-                      if np.isfinite(x) and np.isfinite(y))
-        if not covered:
+        if not any(_covers(box, line) for line in ax.get_lines() if line.get_visible()):
             continue
         handles, labels = ax.get_legend_handles_labels()
         ncol = max(1, min(3, len(labels), int(ax.bbox.width // box.width)))
