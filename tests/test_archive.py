@@ -4,6 +4,7 @@ import io
 import os
 import tarfile
 import time
+from pathlib import Path
 
 import pytest
 
@@ -54,6 +55,30 @@ def test_the_same_files_give_a_byte_identical_archive(tmp_path, monkeypatch):
     assert make_archive(["results/a.csv"], "two/other.tar.gz").read_bytes() == first
     (tmp_path / "results/a.csv").write_text("x,y\n1,3\n")
     assert make_archive(["results/a.csv"], "three/r.tar.gz").read_bytes() != first
+
+
+def test_a_copy_is_stored_once_and_restored_as_a_file(tmp_path, monkeypatch):
+    """A results file with the bytes of an earlier one (the report's copy of a figure) is a
+    hard link in the archive: the archive grows by a header, not by the file; a restore
+    writes it as a file of its own, with the same bytes."""
+    monkeypatch.chdir(tmp_path)
+    figure = os.urandom(50_000)     # incompressible: a copy stored whole would double it
+    for name in ("results/paper_a/figures/f.png", "results/report/shown/f.png"):
+        Path(name).parent.mkdir(parents=True, exist_ok=True)
+        Path(name).write_bytes(figure)
+    once = make_archive(["results/paper_a/figures/f.png"], "one.tar.gz").stat().st_size
+    out = make_archive(["results/report/shown/f.png", "results/paper_a/figures/f.png"],
+                       "both.tar.gz")
+    assert out.stat().st_size - once < 2_000
+    with tarfile.open(out) as tar:
+        link = tar.getmember("results/report/shown/f.png")
+        assert link.islnk() and link.linkname == "results/paper_a/figures/f.png"
+    root = tmp_path / "clone"
+    root.mkdir()
+    assert restore_archive(out, sha256_file(out), root) == [
+        "results/paper_a/figures/f.png", "results/report/shown/f.png"]
+    copy = root / "results/report/shown/f.png"
+    assert copy.read_bytes() == figure and copy.stat().st_nlink == 1
 
 
 @pytest.mark.parametrize("damage", ["truncate", "garbage", "empty", "no_manifest"])
@@ -127,6 +152,10 @@ CRAFTED = {
     "dot component": [_file("results/./a.csv")],
     "symbolic link": [_special("results/link", tarfile.SYMTYPE, "/etc/passwd")],
     "hard link": [_special("results/hard", tarfile.LNKTYPE, "/etc/passwd")],
+    "hard link to a later member": [_special("results/hard", tarfile.LNKTYPE, "results/z.csv"),
+                                    _file("results/z.csv")],
+    "hard link outside results": [_file("LICENSE"),
+                                  _special("results/hard", tarfile.LNKTYPE, "LICENSE")],
     "character device": [_special("results/tty", tarfile.CHRTYPE)],
     "block device": [_special("results/disk", tarfile.BLKTYPE)],
     "fifo": [_special("results/fifo", tarfile.FIFOTYPE)],

@@ -4,6 +4,7 @@ restoration without recomputation."""
 
 import base64
 import csv
+import hashlib
 import html
 import json
 import re
@@ -171,6 +172,13 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
         figures = {p.relative_to(work).as_posix()
                    for p in (work / "results").glob(f"paper_*/figures/*.{kind}")}
         assert figures and figures <= set(members), kind
+    stored = [data for name, data in _members(archive, links=False).items()
+              if name.startswith("results/")]   # the report's copies are links: bytes once
+    assert len({hashlib.sha256(data).digest() for data in stored}) == len(stored)
+    with tarfile.open(archive) as tar:
+        links = {m.name for m in tar.getmembers() if m.islnk()}
+    assert {p.relative_to(work).as_posix()
+            for p in (work / "results/report").rglob("*.png")} <= links
     fresh = copy_repository(tmp_path / "fresh")
     published = digest_file(archive).read_text().split()[0]
     restored = restore_archive(archive, published, fresh)
@@ -181,13 +189,18 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
         assert planned_jobs(snakemake(fresh, "-n", *REDUCED)) == set()
         snakemake(fresh, "--report", "results/report.html", *REDUCED)   # rebuilt from it
         assert "Verdict totals" in (fresh / "results/report.html").read_text(errors="replace")
+        rebuilt = snakemake(fresh, "-j1", "archive", *REDUCED)       # and the archive, again
+        assert planned_jobs(rebuilt) == {"archive"}
+        assert (fresh / archive.relative_to(work)).read_bytes() == archive.read_bytes()
     assert [message for _, message, _ in issues.result()] == [
         "The Root Data Entity SHOULD have a `publisher` property (Organization or Person)"]
 
 
-def _members(archive: Path) -> dict[str, bytes]:
+def _members(archive: Path, links: bool = True) -> dict[str, bytes]:
+    """Each member's bytes; a hard link's are its target's (``links``), else it is left out."""
     with tarfile.open(archive) as tar:
-        return {m.name: tar.extractfile(m).read() for m in tar.getmembers() if m.isfile()}
+        return {m.name: tar.extractfile(m).read() for m in tar.getmembers()
+                if m.isfile() or (links and m.islnk())}
 
 
 def test_two_runs_pack_the_same_archive_but_for_the_split(runs, tmp_path):

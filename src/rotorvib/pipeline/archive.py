@@ -5,7 +5,9 @@ The archive holds the files under their repository paths (``results/...``) plus
 ``results/ARCHIVE_MANIFEST.sha256`` (``sha256sum -c`` format) and ``results/ARCHIVE_README.md``.
 It is reproducible: two builds of the same commit and configuration give the same bytes.
 Members come in sorted order with a fixed mtime (``SOURCE_DATE_EPOCH``, else 0), owner and
-mode, and a gzip header without a timestamp; Snakemake's job records are archived without
+mode, and a gzip header without a timestamp; a results file with the bytes of an earlier one
+(the report's copies of the figures and table pages) is stored once, the copy as a hard link
+(:data:`LINKED`); Snakemake's job records are archived without
 what differs between two runs (:data:`RUN_TIMES`: start and end times, the job's in-process
 hash), which Snakemake uses for the report's runtimes only, never to decide a rerun.  The HTML
 report, whose runtimes and timestamps differ between runs, is not archived: ``snakemake
@@ -28,6 +30,10 @@ import zlib
 from pathlib import Path
 
 MANIFEST = "results/ARCHIVE_MANIFEST.sha256"
+#: Where a file with the bytes of an earlier one (the copies of the figures and table pages
+#: that the report shows, ``results/report/``) is stored once: as a hard link to the first
+#: (in sorted order), which a restore writes as a copy and ``tar -x`` as a link.
+LINKED = "results/"
 #: Snakemake's per-output records (params, code and input hashes), kept so that a restored
 #: archive still reruns exactly the jobs a later config or code change affects.
 METADATA_DIR = ".snakemake/metadata"
@@ -63,7 +69,9 @@ one commit give the same archive), so the report's runtime statistics read zero.
 
 ## Contents
 
-{count} files; SHA-256 of each in `ARCHIVE_MANIFEST.sha256`.
+{count} files; SHA-256 of each in `ARCHIVE_MANIFEST.sha256`. A file with the bytes of an
+earlier one (the report's copies of the figures and table pages, `results/report/shown/`) is
+stored once, as a hard link to it: the restore writes it as a file, `tar -x` as a link.
 """
 
 
@@ -115,9 +123,10 @@ def make_archive(files: list[str | Path], output: str | Path,
     records, the ``generated`` members (name -> text, e.g. the RO-Crate), a manifest of all of
     them and a README; write the archive's SHA-256 beside it (:func:`digest_file`)."""
     files = sorted({Path(f).as_posix() for f in files})
+    digests = {f: sha256_file(f) for f in files}
     records = {record: without_run_times(record) for record in job_records(files)}
     generated = dict(sorted({**records, **(generated or {})}.items()))
-    manifest = "".join(f"{sha256_file(f)}  {f}\n" for f in files) + "".join(
+    manifest = "".join(f"{digests[f]}  {f}\n" for f in files) + "".join(
         f"{hashlib.sha256(text.encode()).hexdigest()}  {name}\n"
         for name, text in generated.items())
     output = Path(output)
@@ -125,14 +134,27 @@ def make_archive(files: list[str | Path], output: str | Path,
     with open(output, "wb") as raw, \
             gzip.GzipFile(filename="", fileobj=raw, mode="wb", mtime=0) as gz, \
             tarfile.open(fileobj=gz, mode="w", format=tarfile.PAX_FORMAT) as tar:
+        first = {}      # a results file's digest -> the first results file with those bytes
         for f in files:
+            if f.startswith(LINKED) and digests[f] in first:
+                tar.addfile(_anonymise(_hard_link(f, first[digests[f]])))
+                continue
             tar.add(f, arcname=f, recursive=False, filter=_anonymise)
+            if f.startswith(LINKED):
+                first.setdefault(digests[f], f)
         for name, text in generated.items():
             _add_text(tar, name, text)
         _add_text(tar, MANIFEST, manifest)
         _add_text(tar, README, RESTORE_NOTES.format(count=len(files) + len(generated)))
     digest_file(output).write_text(f"{sha256_file(output)}  {output.name}\n", encoding="utf-8")
     return output
+
+
+def _hard_link(name: str, target: str) -> tarfile.TarInfo:
+    """A member that holds no bytes: ``name`` is a copy of the earlier member ``target``."""
+    info = tarfile.TarInfo(name)
+    info.type, info.linkname = tarfile.LNKTYPE, target
+    return info
 
 
 def digest_file(archive: str | Path) -> Path:
@@ -184,12 +206,17 @@ class _HashingReader:
         return self.digest.hexdigest()
 
 
-def _member_problem(member: tarfile.TarInfo) -> str | None:
-    """Why a member is refused, or None: only regular files with a relative, normalised name
-    inside the archive, no special mode bits, within the size bound."""
+def _member_problem(member: tarfile.TarInfo, earlier: dict[str, str]) -> str | None:
+    """Why a member is refused, or None: only regular files, and hard links to an earlier
+    regular file of the archive (``earlier``: name -> digest; see :data:`LINKED`), with a
+    relative, normalised name inside the archive, no special mode bits, within the size
+    bound."""
     name = member.name
-    if not member.isfile():
-        return "is not a regular file (a link, directory or device)"
+    if member.islnk():
+        if member.linkname not in earlier or not member.linkname.startswith(LINKED):
+            return f"is a link to {member.linkname!r}, not to an earlier file of {LINKED}"
+    elif not member.isfile():
+        return "is not a regular file (a symbolic link, directory or device)"
     if name.startswith("/") or "\\" in name or any(p in ("", ".", "..")
                                                      for p in name.split("/")):
         return "has a name that is not a plain relative path"
@@ -241,21 +268,28 @@ def _scan(path: str | Path, sha256: str | None, stage: Path | None) -> list[str]
         reader = _HashingReader(raw)
         with tarfile.open(fileobj=reader, mode="r|gz") as tar:
             for member in tar:
-                if problem := _member_problem(member):
+                if problem := _member_problem(member, digests):
                     raise ValueError(f"member {member.name!r} {problem}")
                 if member.name in digests or (member.name == MANIFEST and manifest is not None):
                     raise ValueError(f"member {member.name!r} appears twice")
                 total += member.size
                 if len(digests) >= MAX_MEMBERS or total > MAX_TOTAL_BYTES:
                     raise ValueError(f"more than {MAX_MEMBERS} members or {MAX_TOTAL_BYTES} bytes")
+                restored = stage is not None and member.name.startswith(RESTORED)
+                target = stage / member.name if restored else None
+                if member.islnk():      # a copy of an earlier member, staged when restored
+                    digests[member.name] = digests[member.linkname]
+                    if restored:
+                        with open(stage / member.linkname, "rb") as copied:
+                            _copy(copied, target)
+                    continue
                 source = tar.extractfile(member)
                 if member.name == MANIFEST:
                     if member.size > MAX_MANIFEST_BYTES:
                         raise ValueError(f"the manifest is larger than {MAX_MANIFEST_BYTES} bytes")
                     manifest = _manifest(source.read())
                     continue
-                restored = stage is not None and member.name.startswith(RESTORED)
-                digests[member.name] = _copy(source, stage / member.name if restored else None)
+                digests[member.name] = _copy(source, target)
         whole = reader.rest()
     if sha256 is not None and whole != sha256.strip().lower():
         raise ValueError(f"the archive's SHA-256 is {whole}, not the {sha256.strip()} given: "
