@@ -236,6 +236,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--keep", action="store_true", help="keep the scratch folder")
     args = parser.parse_args(argv)
     results = f"results/estimate/pass{os.getpid()}"
+    print(f"counting paper B's run-ups: its jobs run on {args.cores} cores with every batch of "
+          f"more than {COMPUTED} run-ups counted, not integrated (what this pass costs is the "
+          f"'rest' below), then {SAMPLE} run-ups of each job are timed", flush=True)
     try:
         folder = counting_pass(Path.cwd(), args.configfiles, args.cores, results)
         print(report(job_costs(folder), benchmark_cpu(folder), args.cores))
