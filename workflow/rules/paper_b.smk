@@ -276,10 +276,33 @@ rule b_balance_law:
         ],
         # each source's parameters that its dataset does not vary
         fixed={name: fixed for name, (_, fixed) in B_LAW_SOURCES.items()},
+        ics=B["initial_conditions"],
     message:
         "Paper B (beyond the paper): the balance-time law against every balanced run"
     script:
         "../scripts/b_balance_law.py"
+
+
+rule b_design_rule:
+    input:
+        law=rules.b_balance_law.output[0],
+    output:
+        dataset("b", "design_rule"),
+    log:
+        logs("b_design_rule"),
+    priority: LONGEST_CHAIN
+    # A grid of closed forms and eigenvalues, and three run-ups: runs where Snakemake runs.
+    localrule: True
+    params:
+        setup=B_SETUP,
+        rule=B["design_rule"],
+        ics=B["initial_conditions"],
+        neutral=B["marginal_growth"],
+        share=B["balance_law"]["whirl_share"],
+    message:
+        "Paper B (beyond the paper): a design rule from the balance time predicted without integrating"
+    script:
+        "../scripts/b_design_rule.py"
 
 
 rule b_ga_law:
@@ -385,6 +408,7 @@ rule b_reproduced_values:
         forces=rules.b_forces.output[0],
         basin=rules.b_basin.output[0],
         law=rules.b_balance_law.output[0],
+        design_rule=rules.b_design_rule.output[0],
         ga_law=rules.b_ga_law.output[0],
         zeta_inversion=rules.b_zeta_inversion.output[0],
         paper_values=PAPER_VALUES,

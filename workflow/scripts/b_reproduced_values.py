@@ -15,6 +15,7 @@ from rotorvib.papers.b.claims import reproduce
 from rotorvib.papers.b.ga_law import ga_law_rows
 from rotorvib.papers.b.law import law_rows, support_damping_rows, trend_rows
 from rotorvib.papers.b.pareto import pareto_rows
+from rotorvib.papers.b.prediction import design_rows, prediction_rows
 from rotorvib.papers.b.uncertainty import uncertainty_rows
 from rotorvib.papers.b.zeta_inversion import zeta_rows
 
@@ -33,6 +34,7 @@ def take(prefix: str) -> dict:
 
 pareto, uncertainty, boundaries = take("pareto_"), take("uncertainty_"), take("boundary_")
 law, ga_law, zeta = data.pop("law"), data.pop("ga_law"), data.pop("zeta_inversion")
+design = data.pop("design_rule")
 paper = paper_values_of(snakemake.input.paper_values, "B")
 rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p.typical,
                  r_threshold=p.r_threshold, time_uncertainty=p.time_uncertainty,
@@ -42,4 +44,5 @@ rows += merge_variants({kin: pareto_rows(ds) for kin, ds in pareto.items()},
 rows += uncertainty_rows(uncertainty, paper) + law_rows(law, Close.from_config(p.close)) + trend_rows(law)
 rows += support_damping_rows(law, p.zeta, neutral=p.neutral) + ga_law_rows(ga_law, flat=p.time_uncertainty)
 rows += boundary_rows(boundaries) + zeta_rows(zeta)
+rows += prediction_rows(law, Close.from_config(p.close)) + design_rows(design)
 write_reproduced(rows, snakemake.output[0])

@@ -51,6 +51,50 @@ def balance_law(law, paper):
     return fig
 
 
+def design_rule(design, law, ga, paper):
+    """Beyond the paper: the closed-form law's relative errors beside the integrated passage's
+    over every balanced run (medians and 90th percentiles marked), and the design rule's map of
+    the mean predicted balance time over (beta, m) with the recommended design, its band and
+    its integrated check, and the GA's optima at the rule's eccentricity and kinematics."""
+    fig, (ax1, ax2) = figure(1, 2, figsize=(12.0, 4.8))
+    closed = law.relative_error_closed.values
+    integrated = law.relative_error.values
+    integrated = integrated[0] if integrated.ndim == 2 else integrated
+    bins = np.linspace(-100, 150, 101)
+    for i, (errors, name) in enumerate(((integrated, "passage integrated"),
+                                        (closed, "passage in closed form"))):
+        shown = errors[np.isfinite(errors)]
+        if not shown.size:
+            continue
+        med, p90 = (100 * np.percentile(np.abs(shown), q) for q in (50, 90))
+        ax1.hist(np.clip(100 * shown, bins[0], bins[-1]), bins=bins, histtype="step", lw=1.4,
+                 color=f"C{i}", label=f"{name}: |error| median {med:.1f} %, 90th pct. "
+                                      f"{p90:.1f} % ({shown.size} runs)")
+    ax1.set(xlabel="relative error of the predicted balance time (%)", ylabel="runs",
+            title="balance time t_pk + ln(F_pk / (k r_thr)) / σ\nagainst the integration")
+    ax1.legend(fontsize=7, loc="upper right")
+    beta, mass = design.beta.values, 1e3 * design.mass.values
+    shading = ax2.pcolormesh(beta, mass, design.mean_time.values, shading="nearest",
+                             cmap="viridis")
+    fig.colorbar(shading, ax=ax2, label="mean predicted balance time (s)")
+    ax2.plot(float(design.recommended_beta), 1e3 * float(design.recommended_mass), "*",
+             color="C3", ms=14, mec="w",
+             label=f"recommended: {float(design.recommended_time):.2f} s predicted "
+                   f"(band {float(design.band_low):.2f}-{float(design.band_high):.2f} s), "
+                   f"{np.mean(design.integrated_time.values):.2f} s integrated")
+    at = (ga.kinematics_name == design.attrs["kinematics"]).values
+    if at.any() and design.attrs["eps_bar"] in ga.eps_bar.values:
+        opt = ga.isel(kinematics=int(np.flatnonzero(at)[0])).sel(eps_bar=design.attrs["eps_bar"])
+        ax2.plot(opt.beta_opt.values, 1e3 * opt.mass_opt.values, "o", mfc="none", mec="w",
+                 ms=8, mew=1.5, label="GA optima, one per initial condition (integrated)")
+    ax2.set(xlabel="ball damping ratio β", ylabel="ball mass m (g)",
+            title=f"design rule: ε̄ = {design.attrs['eps_bar']:g}, "
+                  f"{design.attrs['speed_rad_s']:g} rad/s, {design.attrs['kinematics']} "
+                  "kinematics,\nmean over " + ", ".join(design.ic_name.values))
+    ax2.legend(fontsize=7, loc="upper right")
+    return fig
+
+
 def pareto(pareto, paper):
     """Beyond the paper: the front of mean balance time against worst peak bearing force, with
     Table 2's rows, and where the front lies in (beta, m)."""

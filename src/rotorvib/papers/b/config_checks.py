@@ -99,6 +99,7 @@ def existence_problems(b: dict) -> list[tuple[str, str]]:
     for i, (_, m) in enumerate(b["table2"]["cases"]):
         check(f"table2.cases.{i}", m, b["table2"]["eps_bar"])
     check("table1.mass.min", b["table1"]["mass"]["min"], b["table1"]["eps_bar"])
+    check("design_rule.mass.min", b["design_rule"]["mass"]["min"], b["design_rule"]["eps_bar"])
     for i, (_, m) in enumerate(b["basin"]["cases"]):
         check(f"basin.cases.{i}", m, b["basin"]["eps_bar"])
     tr = b["time_responses"]
@@ -112,6 +113,25 @@ def existence_problems(b: dict) -> list[tuple[str, str]]:
         if "mass" in values and "eps_bar" in values:
             check(f"balance_studies.{name}", np.min(values["mass"]), np.max(values["eps_bar"]))
     return problems
+
+def design_rule_problems(b: dict) -> list[tuple[str, str]]:
+    """The design rule's initial conditions that ``initial_conditions`` does not name, a band
+    whose percentiles are not increasing, and an operating speed the run-up reaches without
+    passing the critical speed (no passage to predict)."""
+    rule, found = b["design_rule"], []
+    if unknown := [name for name in rule["ics"] if name not in b["initial_conditions"]]:
+        found.append(("design_rule.ics", f"{unknown} are not initial conditions of "
+                                         f"paper_b.initial_conditions {list(b['initial_conditions'])}"))
+    if not rule["band"][0] < rule["band"][1]:
+        found.append(("design_rule.band", f"{rule['band']}: the low percentile must be below "
+                                          "the high one"))
+    machine = b["machine"]
+    critical = np.sqrt(machine["k"] / machine["M"])
+    if rule["speed"] <= critical:
+        found.append(("design_rule.speed", f"{rule['speed']:g} rad/s does not pass the critical "
+                                           f"speed sqrt(k/M) = {critical:g} rad/s: no passage"))
+    return found
+
 
 def run_budget_problems(b: dict) -> list[tuple[str, str]]:
     """Runs the engine would refuse (:mod:`rotorvib.models.balancer.limits`), named by their
@@ -223,4 +243,5 @@ def problems(b: dict) -> list[tuple[str, str]]:
     if problem := tolerance_problem(b["balance"]["integrator"]["rtol"]):
         found.append(("balance.integrator.rtol", problem))
     return (found + existence_problems(b) + run_budget_problems(b) + study_size_problems(b)
-            + boundary_problems(b) + ga_law_problems(b) + ross_problems(b) + map_problems(b))
+            + boundary_problems(b) + ga_law_problems(b) + ross_problems(b) + map_problems(b)
+            + design_rule_problems(b))

@@ -314,3 +314,4 @@ def uncertainty(unc, paper):
 balance_law, pareto = beyond_figures.balance_law, beyond_figures.pareto
 boundaries, ross_check = beyond_figures.boundaries, beyond_figures.ross_check
 ga_law, zeta_inversion = beyond_figures.ga_law, beyond_figures.zeta_inversion
+design_rule = beyond_figures.design_rule

@@ -34,8 +34,8 @@ from rotorvib.papers.b.stability_maps import balanced_modes
 
 #: coordinate of a study dataset -> the run parameter it holds
 _PARAMETER_COORDS = {"mass": "mass", "case_mass": "mass", "beta": "beta", "case_beta": "beta",
-                     "eps_bar": "eps_bar", "speed": "speed", "zeta": "zeta"}
-_RUN_PARAMETERS = ("mass", "beta", "eps_bar", "speed", "zeta")
+                     "eps_bar": "eps_bar", "speed": "speed", "zeta": "zeta", "R": "R"}
+_RUN_PARAMETERS = ("mass", "beta", "eps_bar", "speed", "zeta", "R")
 #: The law dataset's variables: (long name, units); its relative errors share one.
 LAW_VARIABLES = {
     "m_bar": ("ball mass ratio m/M", "1"),
@@ -43,6 +43,8 @@ LAW_VARIABLES = {
     "beta": ("ball damping ratio beta", "1"),
     "omega_bar": ("operating speed / omega_n", "1"),
     "zeta": ("support damping ratio", "1"),
+    "R": ("race radius R", "m"),
+    "phi0": ("initial ball angle, disk frame", "degree"),
     "sigma": ("decay rate of the slowest non-neutral mode carrying at least the share of the "
               "whirl", "s-1"),
     "sigma_slowest": ("decay rate of the slowest non-neutral mode of all", "s-1"),
@@ -83,7 +85,7 @@ def run_parameters(ds: xr.Dataset, fixed: dict) -> dict[str, xr.DataArray]:
     for coord, name in _PARAMETER_COORDS.items():
         if coord in ds.coords:
             values[name] = ds[coord]
-    missing = set(_RUN_PARAMETERS) - {"zeta"} - set(values)
+    missing = set(_RUN_PARAMETERS) - {"zeta", "R"} - set(values)
     if missing:
         raise ValueError(f"the parameters {sorted(missing)} are neither coordinates nor fixed")
     return {name: _over_runs(xr.DataArray(v) if np.isscalar(v) else v, ds)
@@ -101,22 +103,39 @@ def at_the_law(ds: xr.Dataset) -> xr.Dataset:
     return ds.isel(share=0) if "share" in ds.dims else ds
 
 
-def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
+def initial_ball_angles(ds: xr.Dataset, fixed: dict, ics: dict) -> np.ndarray:
+    """Each run's initial ball angles (degrees), shape ``balance_time.shape + (balls,)``: the
+    ``phi1``, ``phi2``, ... coordinates where the dataset varies them (the basin map), else
+    the initial conditions of ``ics`` named along its ``ic`` dimension, else the one named
+    ``fixed["ic"]``."""
+    if "phi1" in ds.coords:
+        balls = sorted((c for c in ds.coords if c.startswith("phi") and c[3:].isdigit()),
+                       key=lambda c: int(c[3:]))
+        return np.stack([_over_runs(ds[c], ds).values for c in balls], axis=-1)
+    names = (_over_runs(ds.ic_name, ds).values if "ic" in ds.balance_time.dims
+             else np.full(ds.balance_time.shape, fixed["ic"], dtype=object))
+    return np.array([ics[str(n)] for n in names.ravel()],
+                    dtype=float).reshape(*names.shape, -1)
+
+
+def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], ics: dict, *,
                 neutral: float, shares) -> xr.Dataset:
     """The law against the integration on every balanced run of ``sources`` (name ->
-    ``(dataset, fixed parameters)``, :func:`run_parameters`; the support damping defaults to
-    the machine's), one ``run`` dimension: the source, the kinematics, the parameters, the peak
-    force and its time, the integrated balance time, and for each whirl share of ``shares``
-    (the first is the law's) the decay rate ``sigma`` and the predicted balance time; with the
-    slowest mode of all, ``sigma_slowest`` and ``predicted_slowest``."""
+    ``(dataset, fixed parameters)``, :func:`run_parameters`; the support damping and race
+    radius default to the machine's), one ``run`` dimension: the source, the kinematics, the
+    parameters and initial ball angles (:func:`initial_ball_angles`, ``ics`` the initial
+    conditions by name), the peak force and its time, the integrated balance time, and for
+    each whirl share of ``shares`` (the first is the law's) the decay rate ``sigma`` and the
+    predicted balance time; with the slowest mode of all, ``sigma_slowest`` and
+    ``predicted_slowest``."""
     wn = np.sqrt(setup.k / setup.M)
     f_threshold = setup.k * setup.criterion.r_threshold
     shares = tuple(float(s) for s in shares)
     columns = {key: [] for key in ("source", "kinematics", "m_bar", "eps_bar", "beta",
-                                   "omega_bar", "zeta", "sigma", "sigma_slowest", "t_peak",
-                                   "force_peak", "balance_time")}
+                                   "omega_bar", "zeta", "R", "phi0", "sigma", "sigma_slowest",
+                                   "t_peak", "force_peak", "balance_time")}
     for name, (ds, fixed) in sources.items():
-        p = run_parameters(ds, {"zeta": setup.zeta, **fixed})
+        p = run_parameters(ds, {"zeta": setup.zeta, "R": setup.R, **fixed})
         kin = _over_runs(ds.kinematics_name, ds)
         balanced = (ds.balanced == 1).values
         m_bar, eps, beta = (p["mass"].values / setup.M, p["eps_bar"].values, p["beta"].values)
@@ -129,7 +148,8 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
         for key, values in (("source", np.full(balanced.shape, name, dtype=object)),
                             ("kinematics", kin.values.astype(object)), ("m_bar", m_bar),
                             ("eps_bar", eps), ("beta", beta), ("omega_bar", omega_bar),
-                            ("zeta", zeta),
+                            ("zeta", zeta), ("R", p["R"].values),
+                            ("phi0", initial_ball_angles(ds, fixed, ics)),
                             ("sigma", np.stack([rate(s) for s in shares], axis=-1)),
                             ("sigma_slowest", rate(0.0)),
                             ("t_peak", ds.force_max_time.values),
@@ -147,7 +167,9 @@ def law_dataset(setup: Setup, sources: dict[str, tuple[xr.Dataset, dict]], *,
              "has no rate)", "1")
     return xr.Dataset(
         described({
-            **{k: ("run", data[k]) for k in ("m_bar", "eps_bar", "beta", "omega_bar", "zeta")},
+            **{k: ("run", data[k]) for k in ("m_bar", "eps_bar", "beta", "omega_bar", "zeta",
+                                             "R")},
+            "phi0": (("run", "ball"), data["phi0"]),
             "sigma": (("share", "run"), data["sigma"].T),
             **{k: ("run", data[k]) for k in ("sigma_slowest", "t_peak", "force_peak")},
             "predicted": (("share", "run"), predicted),

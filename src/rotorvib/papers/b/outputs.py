@@ -85,7 +85,8 @@ def law_sources(b: dict) -> dict[str, tuple[str, dict]]:
         "basin": ("basin", {"eps_bar": b["basin"]["eps_bar"], "speed": b["speed"]["omega"]}),
         "calibration": (
             "forces",
-            {"eps_bar": b["table2"]["eps_bar"], "speed": b["table2"]["speed"]},
+            {"eps_bar": b["table2"]["eps_bar"], "speed": b["table2"]["speed"],
+             "ic": b["table2"]["ic"]},
         ),
     }
 
@@ -267,6 +268,16 @@ def figures(b: dict) -> dict[str, dict]:
             "balance studies, "
             "Tables 1-2 and the basin map, and the distribution of its relative error.",
             items=["Balance-time law"],
+        ),
+        "design_rule": figure(
+            "design_rule",
+            {"design": "design_rule", "law": "balance_law", "ga": "ga"},
+            "Beyond the paper: the balance time predicted without integrating (the "
+            "critical-speed passage in closed form, the balls held at their initial angles) "
+            "against the integration, its error beside the law's with the integrated passage, "
+            "and the design rule it gives: the mean predicted balance time over the ball mass "
+            "and damping, the recommended design and the GA's optima.",
+            items=["Balance-time prediction"],
         ),
         "zeta_inversion": figure(
             "zeta_inversion",
