@@ -117,6 +117,7 @@ CASES = [
     ("paper_b.ross_check.shaft.E", -1.0, None), ("paper_b.ross_check.speeds.n", 0, None),
     ("paper_b.shards", 0, None), ("paper_b.shards", 2.5, None),
     # the GA optimum's neighbours: no step, past the criterion's t_end, no three bins to fit
+    ("paper_b.ga_shards", 0, None), ("paper_b.ga_shards", 2.5, None),
     ("paper_b.design_rule.ics", ["IC9"], None), ("paper_b.design_rule.band", [90.0, 10.0], None),
     ("paper_b.design_rule.speed", 50.0, None), ("paper_b.design_rule.mass", RANGE_DOWN, None),
     ("paper_b.design_rule.mass", {"min": 0.001, "max": 0.02, "n": 5},

@@ -151,11 +151,14 @@ def batch_study(
     wildcards=None,
     runtime=30,
     priority=LONGEST_CHAIN,
+    shards=1,
 ):
     """A batch study of paper B (its rules: paper_b.smk): its dataset ``name`` (with its
-    wildcards' patterns), its job's parameters and inputs, and its wall-time bound in minutes
-    (``runtime``); its log and benchmark are ``b_<name>``."""
+    wildcards' patterns), its job's parameters and inputs, its wall-time bound in minutes
+    (``runtime``) and the least number of shards it is split into (``paper_b.shards``, if
+    larger, wins); its log and benchmark are ``b_<name>``."""
     return {
+        "shards": shards,
         "dataset": name,
         "name": f"b_{name}",
         "message": message,

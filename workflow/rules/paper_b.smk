@@ -126,6 +126,7 @@ B_BATCH = {
         {**B_RUNS, "ga": B["ga"]},
         runtime=60,
         priority=BESIDE_THE_COMPILE,
+        shards=B["ga_shards"],
     ),
     "b_table1_runs": batch_study(
         "table1",
@@ -183,7 +184,11 @@ for _rule, _study in B_BATCH.items():
                 **(
                     {}
                     if _sharded
-                    else {"shards": shards_of("b", _study["dataset"], B["shards"])}
+                    else {
+                        "shards": shards_of(
+                            "b", _study["dataset"], max(B["shards"], _study["shards"])
+                        )
+                    }
                 ),
             output:
                 (shard_file if _sharded else dataset)("b", _study["dataset"]),

@@ -1,5 +1,6 @@
-"""Rule b_ga: genetic algorithm over (beta, m) for every eps_bar x initial condition; with
-paper_b.shards > 1, a shard of its searches (b_ga_shard) or their replay (rotorvib.pipeline.shards)."""
+"""Rule b_ga: genetic algorithm over (beta, m) for every eps_bar x initial condition; split in
+paper_b.ga_shards (or paper_b.shards, if larger) jobs, a shard of its searches (b_ga_shard) or
+their replay (rotorvib.pipeline.shards)."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 

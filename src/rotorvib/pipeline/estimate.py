@@ -186,7 +186,7 @@ def counting_pass(root: Path, configfiles: list[str], cores: int, results: str,
     folder.mkdir(parents=True)
     (folder / MARKER).write_text("paper B's runs answered by a counter: not results\n")
     # shards change no count: each study in one job (fewer jobs to start)
-    (folder / "one_shard.yaml").write_text("paper_b:\n  shards: 1\n")
+    (folder / "one_shard.yaml").write_text("paper_b:\n  shards: 1\n  ga_shards: 1\n")
     # every dataset of paper B but the discrepancy analysis's (it needs the stated values
     # measured on real runs)
     command = [sys.executable, "-m", "snakemake", f"--cores={cores}", "--nolock", "--quiet",
