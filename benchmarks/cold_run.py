@@ -1,0 +1,82 @@
+"""The run a new user makes: a fresh clone, nothing compiled, ``snakemake -j2``, timed.
+
+Clones the repository's committed state (HEAD) into a scratch folder, runs the paper
+configuration there with ``--cores`` cores (its own ``src`` first on the path, so that every
+compiled cache is built from scratch), and prints the wall time and the CPU time of the whole
+process tree (the operating system's accounting of the finished children). With ``--record
+FILE`` it also writes them, with the commit, the date and the machine, as JSON: the README's
+expected run time is generated from ``benchmarks/records/cold_run.json``
+(``python -m rotorvib.pipeline.readme``), never typed. Run from the repository root::
+
+    python -m benchmarks.cold_run [--cores 2] [--record benchmarks/records/cold_run.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+
+def cpu_model() -> str:
+    """The processor's model name (Linux), else what the platform says."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def children_cpu() -> float:
+    """User + system seconds of every child process waited for so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def cold_run(repository: Path, cores: int) -> dict:
+    """Clone ``repository`` at HEAD into a scratch folder, run ``snakemake -j<cores>`` there
+    and return the record: commit, date, cores, machine, wall and CPU seconds."""
+    commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=repository, check=True,
+                            capture_output=True, text=True).stdout.strip()
+    with tempfile.TemporaryDirectory(prefix="rotorvib-cold-") as scratch:
+        clone = Path(scratch) / "clone"
+        subprocess.run(["git", "clone", "--quiet", str(repository), str(clone)], check=True)
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+            filter(None, [str(clone / "src"), os.environ.get("PYTHONPATH")]))}
+        cpu, start = children_cpu(), time.perf_counter()
+        subprocess.run([str(Path(sys.executable).parent / "snakemake"), f"-j{cores}",
+                        "--quiet", "rules"], cwd=clone, env=env, check=True,
+                       stdout=subprocess.DEVNULL)
+        wall, cpu = time.perf_counter() - start, children_cpu() - cpu
+    return {"commit": commit, "date": datetime.now(timezone.utc).date().isoformat(),
+            "cores": cores, "machine": {"cpus": os.cpu_count(), "cpu": cpu_model(),
+                                        "python": platform.python_version()},
+            "wall_s": round(wall, 1), "cpu_s": round(cpu, 1)}
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cores", type=int, default=2)
+    parser.add_argument("--record", type=Path, help="write the record (JSON) here")
+    args = parser.parse_args(argv)
+    record = cold_run(Path.cwd(), args.cores)
+    print(f"cold snakemake -j{args.cores} at {record['commit'][:7]}: {record['wall_s']} s wall, "
+          f"{record['cpu_s']} s CPU ({record['machine']['cpus']} CPUs, "
+          f"{record['machine']['cpu']})")
+    if args.record:
+        args.record.parent.mkdir(parents=True, exist_ok=True)
+        args.record.write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
+
+
+if __name__ == "__main__":
+    main()
