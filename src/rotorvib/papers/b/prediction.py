@@ -28,7 +28,7 @@ from rotorvib.methods.sensitivity import percentile_spread
 from rotorvib.models.balancer.analysers import METRICS
 from rotorvib.models.balancer.passage import passage_peak
 from rotorvib.papers.b.choices import LAW_CHOICES
-from rotorvib.papers.b.law import balance_time_law, slow_decay_rate
+from rotorvib.papers.b.law import balance_time_law, error_text, slow_decay_rate
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 from rotorvib.papers.b.stability_maps import growth_rate
 
@@ -140,16 +140,6 @@ def design_rule(setup: Setup, *, masses, betas, eps_bar, phi0_deg, kinematics, n
     time = float(mean[i, j])
     return DesignRule(masses, betas, mean, float(masses[i]), float(betas[j]), time,
                       (time / (1 + high), time / (1 + low)))
-
-
-def error_text(errors: np.ndarray) -> str:
-    """``"9.6 % at the median, 90 % within 24.4 % (12000 runs)"`` of relative errors (signed;
-    NaN left out)."""
-    e = np.abs(errors[np.isfinite(errors)])
-    if not e.size:
-        return "no run with a rate"
-    return (f"{np.median(e):.1%} at the median, 90 % within {np.percentile(e, 90):.1%} "
-            f"({e.size} runs)")
 
 
 def prediction_rows(law: xr.Dataset, close, *, resamples: int = 200,
