@@ -80,21 +80,21 @@ def peak_factor(d, g=0.0) -> tuple[np.ndarray, np.ndarray]:
     return envelope(sigma, d, g), sigma
 
 
-def disk_rate(profile: SpeedProfile, t: float) -> tuple[float, float]:
-    """The disk's angular rate and acceleration ``(Phi', Phi'')`` at ``t`` under the profile's
-    kinematics (the engine's own disk angle: ``w t`` printed, ``int w dt`` consistent)."""
-    p = fixed_parameters(Balancer(M=1.0, m=1.0, R=1.0, eps=0.0, k=1.0, c=0.0, D=0.0), profile)
-    _, rate, acceleration = disk_kinematics(float(t), p)
+def disk_rate(params: np.ndarray, t: float) -> tuple[float, float]:
+    """The disk's angular rate and acceleration ``(Phi', Phi'')`` at ``t`` for the engine's
+    FIXED parameters ``params`` (:func:`~rotorvib.models.balancer.parameters.fixed_parameters`;
+    the engine's own disk angle: ``w t`` printed, ``int w dt`` consistent)."""
+    _, rate, acceleration = disk_kinematics(float(t), params)
     return float(rate), float(acceleration)
 
 
-def crossing(profile: SpeedProfile, omega: float) -> float:
-    """The time at which the disk's rate first reaches ``omega`` during the run-up; NaN where it
-    never does (an operating speed at or below it: no passage)."""
-    if profile.kind != "runup" or disk_rate(profile, profile.t_ramp)[0] <= omega:
+def crossing(profile: SpeedProfile, params: np.ndarray, omega: float) -> float:
+    """The time at which the disk's rate (:func:`disk_rate`, ``params`` built with
+    ``profile``) first reaches ``omega`` during the run-up; NaN where it never does (an
+    operating speed at or below it: no passage)."""
+    if profile.kind != "runup" or disk_rate(params, profile.t_ramp)[0] <= omega:
         return float("nan")
-    return brentq(lambda t: disk_rate(profile, t)[0] - omega, 0.0, profile.t_ramp,
-                  xtol=1e-12)
+    return brentq(lambda t: disk_rate(params, t)[0] - omega, 0.0, profile.t_ramp, xtol=1e-12)
 
 
 @dataclass(frozen=True)
@@ -117,10 +117,11 @@ def passage_peak(b: Balancer, profile: SpeedProfile, phi0, r0: float = 0.0) -> P
     throughout where the run-up never reaches the critical speed."""
     total = b.total_mass
     omega = np.sqrt(b.k / total)
-    t_c = crossing(profile, omega)
+    params = fixed_parameters(b, profile)
+    t_c = crossing(profile, params, omega)
     if not np.isfinite(t_c):
         return Passage(*(float("nan"),) * 5)
-    acceleration = disk_rate(profile, t_c)[1]
+    acceleration = disk_rate(params, t_c)[1]
     zeta_t = b.c / (2 * np.sqrt(b.k * total))
     unbalance = np.abs(b.M * b.eps
                        + b.m * b.R * np.exp(1j * np.asarray(phi0, float)).sum(axis=-1))
