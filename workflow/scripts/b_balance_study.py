@@ -3,8 +3,7 @@ for every kinematics and initial condition."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-import numpy as np
-
+from rotorvib.io.coords import grid
 from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.pipeline.shards import run_study
@@ -15,7 +14,7 @@ job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 study = p.study
-values = np.linspace(study["range"]["min"], study["range"]["max"], study["range"]["n"])
+values = grid(study["range"])
 setup = Setup.from_config(**p.setup)
 run_study(snakemake, setup.runs,
           lambda runs: balance_study_dataset(setup, kinematics=p.kinematics, ics=p.ics,

@@ -3,8 +3,7 @@ integrating, and the recommendation integrated (beyond paper B)."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-import numpy as np
-
+from rotorvib.io.coords import grid
 from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
 from rotorvib.papers.b.prediction import design_dataset
 from rotorvib.papers.b.setup import Setup
@@ -13,8 +12,7 @@ from rotorvib.pipeline.job import job_config
 job.start(snakemake.log[0])
 p = snakemake.params
 rule = p.rule
-masses, betas = (np.linspace(rule[k]["min"], rule[k]["max"], rule[k]["n"])
-                 for k in ("mass", "beta"))
+masses, betas = (grid(rule[k]) for k in ("mass", "beta"))
 ds = design_dataset(Setup.from_config(**p.setup), read_dataset(snakemake.input.law,
                                                                 p.input_producers),
                     masses=masses, betas=betas, eps_bar=rule["eps_bar"],

@@ -4,6 +4,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 import numpy as np
 
+from rotorvib.io.coords import grid
 from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.pipeline.shards import run_study
@@ -14,7 +15,7 @@ job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 t2, cal = p.table2, p.calibration["R"]
-R_values = np.union1d(np.linspace(cal["min"], cal["max"], cal["n"]), [p.setup["machine"]["R"]])
+R_values = np.union1d(grid(cal), [p.setup["machine"]["R"]])
 setup = Setup.from_config(**p.setup)
 run_study(snakemake, setup.runs,
           lambda runs: force_dataset(setup, kinematics=p.kinematics, cases=t2["cases"],

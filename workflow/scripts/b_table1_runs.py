@@ -2,8 +2,7 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-import numpy as np
-
+from rotorvib.io.coords import grid
 from rotorvib.models.balancer.analysers import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.pipeline.shards import run_study
@@ -14,7 +13,7 @@ job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
 t1 = p.table1
-masses = np.linspace(t1["mass"]["min"], t1["mass"]["max"], t1["mass"]["n"])
+masses = grid(t1["mass"])
 setup = Setup.from_config(**p.setup)
 run_study(snakemake, setup.runs,
           lambda runs: table1_dataset(setup, kinematics=p.kinematics, speeds=t1["speeds"],

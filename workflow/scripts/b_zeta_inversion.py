@@ -3,8 +3,7 @@ damping zeta, and which zeta (if any) reproduces them together."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-import numpy as np
-
+from rotorvib.io.coords import grid
 from rotorvib.paper_values import paper_value_texts_of
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
@@ -15,8 +14,7 @@ from rotorvib.pipeline.job import job_config
 job.start(snakemake.log[0])
 use_threads(snakemake.threads)
 p = snakemake.params
-grid = p.zeta_inversion["zeta"]
 cases = printed_cases(p.cases, paper_value_texts_of(snakemake.input.paper_values, "B"))
 ds = inversion_dataset(Setup.from_config(**p.setup), cases, kinematics=p.kinematics,
-                       zetas=np.linspace(grid["min"], grid["max"], grid["n"]))
+                       zetas=grid(p.zeta_inversion["zeta"]))
 write_dataset(ds, snakemake.output[0], Provenance(snakemake.rule, job_config(p)))

@@ -10,6 +10,12 @@ import numpy as np
 import xarray as xr
 
 
+def grid(spec: dict) -> np.ndarray:
+    """The points of a configured range ``{min, max, n}`` (config/schema.yaml ``$defs/range``):
+    ``n`` evenly spaced from ``min`` to ``max``, both included."""
+    return np.linspace(spec["min"], spec["max"], spec["n"])
+
+
 def axis_coord(name: str, values, long_name: str, units: str) -> dict:
     """``{name: (name, values, attrs)}``: a numeric coordinate for ``xr.Dataset(coords=...)``."""
     return {name: (name, np.asarray(values, dtype=float), {"long_name": long_name,
