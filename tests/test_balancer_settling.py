@@ -12,13 +12,14 @@ import pytest
 import rotorvib.models.balancer.simulate as runner
 from rotorvib.methods.numba_cache import LOCK, MANIFEST, compile_lock, drop_if_stale
 from rotorvib.models.balancer import engine, settling
-from rotorvib.models.balancer.certificates import balanced_jacobian, certificates
+from rotorvib.models.balancer.certificates import _rotating_rows, balanced_jacobian, certificates
 from rotorvib.models.balancer.kinematics import disk_kinematics
 from rotorvib.models.balancer.parameters import (
     Balancer,
     SpeedProfile,
     fixed_parameters,
     fixed_state,
+    rotating_parameters,
 )
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch, simulate
 from rotorvib.models.balancer.stability import jacobian
@@ -62,6 +63,22 @@ def test_the_linearisation_of_the_compiled_form_is_the_symbolic_one(mass, omega)
     J = balanced_jacobian(np.array([d.mu, d.rho, d.zeta, d.beta, 2.0, omega, 1.0, 0.0]),
                           np.arccos(max(-1.0, -1 / (2 * d.rho))))
     assert np.abs(J - jacobian(d.mu, d.rho, d.zeta, d.beta, omega)).max() < 1e-9
+
+
+def test_the_batch_groups_are_those_of_each_machine():
+    """The certificates' rotating-form rows, built for a batch at once, are bit for bit those
+    that each machine's checked groups give one at a time (Balancer.dimensionless,
+    rotating_parameters), over machines far apart."""
+    rng = np.random.default_rng(5)
+    machines = [Balancer.from_paper_b(M=M, k=k, R=R, m_bar=m_bar, eps_bar=e, zeta=z, beta=b)
+                for M, k, R, m_bar, e, z, b in rng.uniform(
+                    [0.1, 1e2, 0.01, 1e-3, 1e-3, 0.0, 0.01], [50, 1e6, 1.0, 0.1, 0.1, 0.2, 5.0],
+                    (200, 7))]
+    fixed = np.array([fixed_parameters(b, SpeedProfile(1.0)) for b in machines])
+    W = rng.uniform(0.1, 10.0, len(machines))
+    expected = np.array([rotating_parameters(b.dimensionless(), SpeedProfile(w))
+                         for b, w in zip(machines, W)])
+    assert np.array_equal(_rotating_rows(fixed, W), expected)
 
 
 def test_no_certificate_without_a_stable_balanced_state():

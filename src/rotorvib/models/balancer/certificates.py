@@ -16,7 +16,7 @@ from numba import njit
 
 from rotorvib.models.balancer.engine import copy_into, rhs_rotating
 from rotorvib.models.balancer.kinematics import CONSTANT
-from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, rotating_parameters
+from rotorvib.models.balancer.parameters import SpeedProfile, total_mass_groups
 from rotorvib.models.balancer.settling import (
     ALPHA, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
     QUASI_STATIC, RADIUS, SIZE, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N, WEIGHT_F, WEIGHT_R,
@@ -60,7 +60,7 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     matrices and weights of :mod:`settling`'s bounds, or a row with ``ENABLED = 0``."""
     params = np.atleast_2d(np.asarray(params, dtype=float))
     unique, inverse = np.unique(params, axis=0, return_inverse=True)
-    M, m, R, eps, k, c, D, n, omega, t_ramp, profile, _ = unique.T
+    M, m, R, eps, k, c, _, n, omega, t_ramp, profile, _ = unique.T
     mt = M + n * m
     wn = np.sqrt(k / mt)
     ok = (n == 2) & (eps > 0) & (2 * m * R >= M * eps)
@@ -69,10 +69,8 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     rows = np.zeros((len(unique), SIZE))
     i = np.flatnonzero(ok)
     if i.size:
-        groups = np.array([rotating_parameters(   # paper A's groups at the operating speed
-            Balancer(M=M[j], m=m[j], R=R[j], eps=eps[j], k=k[j], c=c[j], D=D[j]).dimensionless(),
-            SpeedProfile(W[j])) for j in i])
-        rows[i] = _modal_rows(_jacobians(groups, alpha[i]), R[i], k[i], c[i], wn[i], W[i], rule)
+        rows[i] = _modal_rows(_jacobians(_rotating_rows(unique[i], W[i]), alpha[i]), R[i], k[i],
+                              c[i], wn[i], W[i], rule)
     rows[:, T_FROM] = np.where(profile == CONSTANT, 0.0, t_ramp)   # constant speed from there
     rows[:, W_N], rows[:, ALPHA] = wn, alpha
     gain = omega**2 / (k - mt * omega**2 + 1j * c * omega)
@@ -82,6 +80,19 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     rows[:, CHECK_EVERY] = np.where(rows[:, ENABLED] > 0, max(1, round(rule.check_dt / sample_dt)),
                                     np.inf)
     return rows[inverse.ravel()]
+
+
+def _rotating_rows(fixed: np.ndarray, W: np.ndarray) -> np.ndarray:
+    """The rotating form's parameter rows (``engine.P_ROT``) of the machines of ``fixed``
+    (``engine.P_FIXED`` rows) at the constant dimensionless speeds ``W``: paper A's groups
+    (:func:`~rotorvib.models.balancer.parameters.total_mass_groups`), as
+    :func:`~rotorvib.models.balancer.parameters.rotating_parameters` lays them out for
+    ``SpeedProfile(W)``."""
+    M, m, R, eps, k, c, D, n = fixed[:, :8].T
+    constant = SpeedProfile(1.0)
+    return np.column_stack([*total_mass_groups(M, m, R, eps, k, c, D, n), n, W,
+                            np.full_like(W, constant.t_ramp),
+                            np.full_like(W, constant.profile_code)])
 
 
 def _modal_rows(J, R, k, c, wn, W, rule: StopRule) -> np.ndarray:

@@ -85,11 +85,10 @@ class Balancer:
         return float(np.sqrt(self.k / self.total_mass))
 
     def dimensionless(self) -> Dimensionless:
-        """Paper A's groups of this machine (digest A)."""
-        mt, wn = self.total_mass, self.omega_n_total
-        return Dimensionless(mu=self.m / mt, rho=self.m * self.R / (self.M * self.eps),
-                             zeta=self.c / (2 * np.sqrt(self.k * mt)),
-                             beta=self.D / (self.m * self.R**2 * wn), n=self.n)
+        """Paper A's groups of this machine (digest A; :func:`total_mass_groups`)."""
+        mu, rho, zeta, beta = total_mass_groups(self.M, self.m, self.R, self.eps, self.k,
+                                                self.c, self.D, self.n)
+        return Dimensionless(mu=mu, rho=rho, zeta=zeta, beta=beta, n=self.n)
 
     def balanced_angle(self) -> float:
         """Eq. (33): ``phi_1* = -phi_2* = arccos(-eps M / (2 m R))`` for two balls (rad)."""
@@ -98,6 +97,18 @@ class Balancer:
     def can_balance(self) -> bool:
         """Existence bound (34): ``m/M >= eps/(2R)`` (two balls)."""
         return self.m / self.M >= 0.5 * self.eps / self.R
+
+
+def total_mass_groups(M, m, R, eps, k, c, D, n):
+    """Paper A's groups ``(mu, rho, zeta, beta)`` of dimensional machines, vectorised over
+    arrays of their parameters (unchecked: :class:`Balancer` checks one machine)::
+
+        M_t = M + n m,   w_n = sqrt(k / M_t),
+        mu = m / M_t,   rho = m R / (M eps),   zeta = c / (2 sqrt(k M_t)),   beta = D / (m R^2 w_n)
+    """
+    mt = M + n * m
+    wn = np.sqrt(k / mt)
+    return m / mt, m * R / (M * eps), c / (2 * np.sqrt(k * mt)), D / (m * R**2 * wn)
 
 
 def balanced_angle(unbalance: float, ball_moment: float, n: int = 2) -> float:
