@@ -21,6 +21,7 @@ from rotorvib.io import cache_files
 from rotorvib.io.cache_files import read_checked, write_checked
 from rotorvib.methods import codegen, numba_cache
 from rotorvib.methods.numba_cache import MANIFEST, compile_lock, drop_if_stale, record
+from rotorvib.models.balancer import parameters, simulate
 from rotorvib.pipeline import fingerprint
 
 # --- checked files -----------------------------------------------------------------------------
@@ -92,9 +93,11 @@ def test_a_manifest_of_the_wrong_shape_is_damaged(tmp_path, capsys):
 def test_a_real_damaged_engine_file_is_recompiled_and_gives_the_same_answer(tmp_path):
     """The balancer's compiled integrator with its index overwritten with garbage, in a copy of
     the package whose cache holds the compiled engine: the next process warns once, compiles
-    that function again and gives the same peak force as before the damage."""
-    probe = ("from rotorvib.models.balancer.parameters import Balancer, SpeedProfile\n"
-             "from rotorvib.models.balancer.simulate import simulate\n"
+    that function again and gives the same peak force as before the damage. (The probe names
+    the modules it runs by import, so that this file counts among those that run the
+    integrators, tests/conftest.py: it starts once they are compiled.)"""
+    probe = (f"from {parameters.__name__} import Balancer, SpeedProfile\n"
+             f"from {simulate.__name__} import simulate\n"
              "b = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012,"
              " zeta=0.01, beta=2.0)\n"
              "print(repr(simulate(b, SpeedProfile(200.0), [0.3, -0.4], 0.05).force_max))\n")

@@ -1,9 +1,9 @@
 """End-to-end workflow tests on the reduced configuration (config/test/config.yaml): what the
 runs built (every result, Table 2's forces, CF-compliant datasets), their determinism (two
-independent runs, one of them sharded, agree byte for byte), what reruns after an edit (exactly the dependent jobs),
-how bad input stops, and the workflow's lint and format, all through the Snakemake command line
-as a user would run it. The runs are shared with test_delivery.py and test_cluster.py
-(tests/workflow_runs.py); their tests start first.
+independent runs, one of them sharded, agree byte for byte), what reruns after an edit (exactly
+the dependent jobs), how bad input stops, and the workflow's lint and format, all through the
+Snakemake command line as a user would run it. The runs are shared with test_delivery.py,
+test_archive_runs.py and test_cluster.py (tests/workflow_runs.py); their tests start first.
 """
 
 import csv

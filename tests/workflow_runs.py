@@ -5,8 +5,8 @@ once per test session by :func:`shared_runs`, the second with every batch study 
 three shards (:data:`REDUCED_SHARDED`): the first
 pytest-xdist worker to need them builds them while the other waits on a lock, then both use
 them.  The tests that read them live in
-several files (test_workflow.py, test_shards.py, test_delivery.py, test_cluster.py) so that the
-two workers share them; a test never changes a run in place (it works in a copy,
+several files (test_workflow.py, test_shards.py, test_delivery.py, test_archive_runs.py,
+test_cluster.py) so that the two workers share them; a test never changes a run in place (it works in a copy,
 :func:`copy_run`), as another worker may be reading or copying it at the same time.
 """
 
