@@ -21,13 +21,13 @@ def pytest_collection_modifyitems(items):
     """A test that reads the reduced runs (its fixtures reach ``runs``) is a workflow test
     (marker ``workflow``: ``pytest -m "not workflow"`` leaves it out with the runs it needs).
     test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), most of the
-    suite's time, on one pytest-xdist worker (pyproject.toml) while the other takes the library
+    suite's time, on one pytest-xdist worker (pyproject.toml) while the others take the library
     tests; the other files with a test that reads the runs last, whole (a worker takes a file
     at its first test: one taken early would wait for the runs with its other tests behind),
     so that whichever worker is free then takes them once the runs exist. Among the library
     tests, the files that can run the balancer's compiled integrators (their imports reach
     them) come after the others: the first worker compiles them for the runs meanwhile, and
-    the second would wait on the compile lock."""
+    the others would wait on the compile lock."""
     read_runs = set()
     for item in items:
         if "runs" in item.fixturenames:

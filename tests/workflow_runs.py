@@ -2,12 +2,12 @@
 
 Two reduced runs (config/test/config.yaml), each in its own copy of the repository, are built
 once per test session by :func:`shared_runs`, the second with every batch study of paper B in
-three shards (:data:`REDUCED_SHARDED`): the first
-pytest-xdist worker to need them builds them while the other waits on a lock, then both use
-them.  The tests that read them live in
-several files (test_workflow.py, test_shards.py, test_delivery.py, test_archive_runs.py,
-test_cluster.py) so that the two workers share them; a test never changes a run in place (it works in a copy,
-:func:`copy_run`), as another worker may be reading or copying it at the same time.
+three shards (:data:`REDUCED_SHARDED`): the first pytest-xdist worker to need them builds
+them while any other waits on a lock, then all use them.  The tests that read them live in
+several files (test_workflow.py, test_reruns.py, test_shards.py, test_delivery.py,
+test_archive_runs.py, test_cluster.py) so that the workers share them; a test never changes a
+run in place (it works in a copy, :func:`copy_run`), as another worker may be reading or
+copying it at the same time.
 """
 
 import fcntl
