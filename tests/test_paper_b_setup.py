@@ -26,6 +26,21 @@ def test_the_setup_runs_the_configured_integrator(config, setup):
     assert setup.tolerances == config["paper_b"]["balance"]["integrator"]
 
 
+@pytest.mark.parametrize("fixed", [
+    {"eps_bar": 0.012, "phi0_deg": [30.0, -30.0], "kinematics": "printed"},
+    {"eps_bar": 0.004, "phi0_deg": [90.0, 10.0], "kinematics": "consistent", "speed": 150.0,
+     "R": 0.08, "zeta": 0.02}])
+def test_a_batch_of_inputs_is_each_run_s_own(setup, fixed):
+    """The inputs built for a batch at once (the GA's) are bit for bit those of each run built
+    and checked alone, over the GA's box and beyond it."""
+    betas, masses = np.random.default_rng(3).uniform([0.01, 0.001], [5.0, 0.1], (500, 2)).T
+    batch = setup.batch_inputs(masses=masses, betas=betas, **fixed)
+    alone = [setup.run_inputs(mass=m, beta=b, **fixed) for b, m in zip(betas, masses)]
+    assert len(batch) == len(alone) == 500
+    assert all(np.array_equal(p, q) and np.array_equal(y, z)
+               for (p, y), (q, z) in zip(batch, alone))
+
+
 def test_run_parameters_match_the_schema(schema):
     assert set(schema["$defs"]["run_parameter"]["enum"]) == set(RUN_PARAMETERS)
 

@@ -64,11 +64,10 @@ class Balancer:
 
     @classmethod
     def from_paper_b(cls, *, M, k, R, m_bar, eps_bar, zeta, beta, n=2) -> "Balancer":
-        """From paper B's dimensionless groups (eqs 25-26)."""
-        omega_n = np.sqrt(k / M)
-        m = m_bar * M
-        return cls(M=M, m=m, R=R, eps=eps_bar * R, k=k, c=2 * zeta * np.sqrt(M * k),
-                   D=beta * m * R**2 * omega_n, n=n)
+        """From paper B's dimensionless groups (eqs 25-26, :func:`paper_b_machine`)."""
+        m, eps, c, D = paper_b_machine(M=M, k=k, R=R, m_bar=m_bar, eps_bar=eps_bar, zeta=zeta,
+                                       beta=beta)
+        return cls(M=M, m=m, R=R, eps=eps, k=k, c=c, D=D, n=n)
 
     @property
     def total_mass(self) -> float:
@@ -97,6 +96,17 @@ class Balancer:
     def can_balance(self) -> bool:
         """Existence bound (34): ``m/M >= eps/(2R)`` (two balls)."""
         return self.m / self.M >= 0.5 * self.eps / self.R
+
+
+def paper_b_machine(*, M, k, R, m_bar, eps_bar, zeta, beta):
+    """The ball mass, eccentricity, support damping and ball drag ``(m, eps, c, D)`` of paper
+    B's groups (eqs 25-26), vectorised over arrays of them (unchecked: :class:`Balancer` checks
+    one machine)::
+
+        m = m_bar M,   eps = eps_bar R,   c = 2 zeta sqrt(M k),   D = beta m R^2 sqrt(k / M)
+    """
+    m = m_bar * M
+    return m, eps_bar * R, 2 * zeta * np.sqrt(M * k), beta * m * R**2 * np.sqrt(k / M)
 
 
 def total_mass_groups(M, m, R, eps, k, c, D, n):
@@ -158,9 +168,17 @@ class SpeedProfile:
 
 def fixed_parameters(b: Balancer, profile: SpeedProfile) -> np.ndarray:
     """Parameter array of the FIXED form (layout ``engine.P_FIXED``)."""
+    return fixed_parameter_rows(M=b.M, m=b.m, R=b.R, eps=b.eps, k=b.k, c=b.c, D=b.D, n=b.n,
+                                profile=profile)[0]
+
+
+def fixed_parameter_rows(*, M, m, R, eps, k, c, D, n, profile: SpeedProfile) -> np.ndarray:
+    """Parameter rows of the FIXED form (layout ``engine.P_FIXED``), one per entry of the
+    machines' parameters broadcast together (unchecked: the engine checks a batch's rows)."""
     kin = kinematics.PRINTED if profile.kinematics == "printed" else kinematics.CONSISTENT
-    return np.array([b.M, b.m, b.R, b.eps, b.k, b.c, b.D, b.n, profile.omega, profile.t_ramp,
-                     profile.profile_code, kin], dtype=float)
+    columns = np.broadcast_arrays(M, m, R, eps, k, c, D, n, profile.omega, profile.t_ramp,
+                                  profile.profile_code, kin)
+    return np.column_stack(columns).astype(float)
 
 
 def rotating_parameters(d: Dimensionless, profile: SpeedProfile) -> np.ndarray:

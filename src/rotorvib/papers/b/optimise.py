@@ -28,8 +28,8 @@ def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_pena
     run = runs or (lambda inputs: setup.runs(inputs, progress=False))
 
     def objectives(xs):
-        metrics = run([setup.run_inputs(mass=mass, beta=beta, **problem)
-                       for problem, x in zip(problems, xs) for beta, mass in x])
+        metrics = run([pair for problem, x in zip(problems, xs)
+                       for pair in setup.batch_inputs(masses=x[:, 1], betas=x[:, 0], **problem)])
         scores = np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"),
                           censored_penalty * setup.criterion.t_end)
         return np.split(scores, np.cumsum([len(x) for x in xs])[:-1])

@@ -20,8 +20,8 @@ import numpy as np
 
 from rotorvib.io.coords import axis_coord
 from rotorvib.models.balancer import engine
-from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
-                                                 fixed_state)
+from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameter_rows,
+                                                 fixed_parameters, fixed_state, paper_b_machine)
 from rotorvib.models.balancer.settling import StopRule
 from rotorvib.models.balancer.simulate import (ATOL, METHOD, RTOL, BalanceCriterion, check_batch,
                                                run_batch)
@@ -155,6 +155,20 @@ class Setup:
         b = self.balancer(mass=mass, eps_bar=eps_bar, beta=beta, R=R, zeta=zeta)
         y0 = fixed_state(self.n, r0=self.r0, theta0=self.theta0, phi0=np.radians(phi0_deg))
         return fixed_parameters(b, self.profile(kinematics, speed)), y0
+
+    def batch_inputs(self, *, masses, betas, eps_bar, phi0_deg, kinematics, speed=None, R=None,
+                     zeta=None) -> list[tuple[np.ndarray, np.ndarray]]:
+        """The inputs of the runs ``(masses[i], betas[i])`` (broadcast together), built at once:
+        each bit for bit that of :meth:`run_inputs` (tested), without its checks of one
+        machine (the engine checks the batch's rows)."""
+        R, zeta = (self.R if R is None else R), (self.zeta if zeta is None else zeta)
+        masses, betas = np.broadcast_arrays(np.asarray(masses, float), np.asarray(betas, float))
+        m, eps, c, D = paper_b_machine(M=self.M, k=self.k, R=R, m_bar=masses / self.M,
+                                       eps_bar=eps_bar, zeta=zeta, beta=betas)
+        rows = fixed_parameter_rows(M=self.M, m=m, R=R, eps=eps, k=self.k, c=c, D=D, n=self.n,
+                                    profile=self.profile(kinematics, speed))
+        y0 = fixed_state(self.n, r0=self.r0, theta0=self.theta0, phi0=np.radians(phi0_deg))
+        return [(row, y0) for row in rows]
 
     def runs(self, inputs, *, progress: bool = True) -> np.ndarray:
         """Metrics of many ``(params, y0)`` runs (a list or :class:`LazyInputs`), in parallel;
