@@ -328,15 +328,23 @@ def script_name(rule):
 
 
 def figure_groups():
-    """The figures of each paper grouped by the datasets they read, in declaration order:
-    ``{(paper, dataset names): [figure names]}``. One job draws a group (figures.smk).
-    """
+    """The figures of each paper grouped by the rules that make the datasets they read, in
+    declaration order: ``{(paper, rule names): [figure names]}``. One job draws a group
+    (figures.smk); read once the rules of the papers exist."""
     groups = {}
     for paper, figures in FIGURES.items():
         for name, declared in figures.items():
-            key = (paper, tuple(sorted(set(declared["datasets"].values()))))
-            groups.setdefault(key, []).append(name)
+            makers = {
+                producer(workflow.rules, dataset(paper, d)).name
+                for d in declared["datasets"].values()
+            }
+            groups.setdefault((paper, tuple(sorted(makers))), []).append(name)
     return groups
+
+
+def figure_datasets(paper, names):
+    """The datasets the figures ``names`` of ``paper`` read, sorted."""
+    return sorted({d for n in names for d in FIGURES[paper][n]["datasets"].values()})
 
 
 def all_results():

@@ -1,7 +1,7 @@
-"""Figure rules (figures.smk): the figures of a paper that read the same datasets, each drawn by
-``rotorvib.papers.<paper>.figures.<function>`` (params.module) from its datasets (by argument
-name) and the paper's values, and saved as PNG and SVG; beside each, what it draws and the
-parameters it depends on (JSON), which its caption states (rule report_text)."""
+"""Figure rules (figures.smk): the figures of a paper whose datasets come from the same rules,
+each drawn by ``rotorvib.papers.<paper>.figures.<function>`` (params.module) from its datasets
+(by argument name) and the paper's values, and saved as PNG and SVG; beside each, what it
+draws and the parameters it depends on (JSON), which its caption states (rule report_text)."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
