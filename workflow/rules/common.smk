@@ -329,7 +329,7 @@ def script_name(rule):
 
 def figure_groups():
     """The figures of each paper grouped by the rules that make the datasets they read, in
-    declaration order: ``{(paper, rule names): [figure names]}``. One job draws a group
+    declaration order: ``{(paper, the rules' names): [figure names]}``. One job draws a group
     (figures.smk); read once the rules of the papers exist."""
     groups = {}
     for paper, figures in FIGURES.items():
