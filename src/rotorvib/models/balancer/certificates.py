@@ -16,7 +16,8 @@ from numba import njit
 
 from rotorvib.models.balancer.engine import copy_into, rhs_rotating
 from rotorvib.models.balancer.kinematics import CONSTANT
-from rotorvib.models.balancer.parameters import SpeedProfile, total_mass_groups
+from rotorvib.models.balancer.parameters import (SpeedProfile, rotating_parameter_rows,
+                                                 total_mass_groups)
 from rotorvib.models.balancer.settling import (
     ALPHA, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
     QUASI_STATIC, RADIUS, SIZE, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N, WEIGHT_F, WEIGHT_R,
@@ -89,10 +90,10 @@ def _rotating_rows(fixed: np.ndarray, W: np.ndarray) -> np.ndarray:
     :func:`~rotorvib.models.balancer.parameters.rotating_parameters` lays them out for
     ``SpeedProfile(W)``."""
     M, m, R, eps, k, c, D, n = fixed[:, :8].T
+    mu, rho, zeta, beta = total_mass_groups(M, m, R, eps, k, c, D, n)
     constant = SpeedProfile(1.0)
-    return np.column_stack([*total_mass_groups(M, m, R, eps, k, c, D, n), n, W,
-                            np.full_like(W, constant.t_ramp),
-                            np.full_like(W, constant.profile_code)])
+    return rotating_parameter_rows(mu=mu, rho=rho, zeta=zeta, beta=beta, n=n, omega=W,
+                                   t_ramp=constant.t_ramp, profile_code=constant.profile_code)
 
 
 def _modal_rows(J, R, k, c, wn, W, rule: StopRule) -> np.ndarray:

@@ -185,8 +185,16 @@ def rotating_parameters(d: Dimensionless, profile: SpeedProfile) -> np.ndarray:
     """Parameter array of the ROTATING form (layout ``engine.P_ROT``)."""
     if profile.kinematics != "consistent":
         raise ValueError("the rotating-frame form exists for the consistent kinematics only")
-    return np.array([d.mu, d.rho, d.zeta, d.beta, d.n, profile.omega, profile.t_ramp,
-                     profile.profile_code], dtype=float)
+    return rotating_parameter_rows(mu=d.mu, rho=d.rho, zeta=d.zeta, beta=d.beta, n=d.n,
+                                   omega=profile.omega, t_ramp=profile.t_ramp,
+                                   profile_code=profile.profile_code)[0]
+
+
+def rotating_parameter_rows(*, mu, rho, zeta, beta, n, omega, t_ramp, profile_code) -> np.ndarray:
+    """Parameter rows of the ROTATING form (layout ``engine.P_ROT``), one per entry of the
+    groups and speeds broadcast together (unchecked: the engine checks a batch's rows)."""
+    columns = np.broadcast_arrays(mu, rho, zeta, beta, n, omega, t_ramp, profile_code)
+    return np.column_stack(columns).astype(float)
 
 
 def fixed_state(n: int, *, r0: float, theta0: float, phi0, rates=None) -> np.ndarray:

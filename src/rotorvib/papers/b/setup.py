@@ -149,12 +149,16 @@ class Setup:
         return SpeedProfile(self.omega if speed is None else speed, "runup", self.t_ramp,
                             kinematics)
 
+    def initial_state(self, phi0_deg) -> np.ndarray:
+        """The fixed-frame state of eq. (36): the disk centre at ``(r0, theta0)``, the balls at
+        ``phi0_deg`` (degrees), at rest."""
+        return fixed_state(self.n, r0=self.r0, theta0=self.theta0, phi0=np.radians(phi0_deg))
+
     def run_inputs(self, *, mass, eps_bar, beta, phi0_deg, kinematics, speed=None, R=None,
                    zeta=None) -> tuple[np.ndarray, np.ndarray]:
         """Engine parameters and initial state of one run (fixed frame)."""
         b = self.balancer(mass=mass, eps_bar=eps_bar, beta=beta, R=R, zeta=zeta)
-        y0 = fixed_state(self.n, r0=self.r0, theta0=self.theta0, phi0=np.radians(phi0_deg))
-        return fixed_parameters(b, self.profile(kinematics, speed)), y0
+        return fixed_parameters(b, self.profile(kinematics, speed)), self.initial_state(phi0_deg)
 
     def batch_inputs(self, *, masses, betas, eps_bar, phi0_deg, kinematics, speed=None, R=None,
                      zeta=None) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -167,7 +171,7 @@ class Setup:
                                        eps_bar=eps_bar, zeta=zeta, beta=betas)
         rows = fixed_parameter_rows(M=self.M, m=m, R=R, eps=eps, k=self.k, c=c, D=D, n=self.n,
                                     profile=self.profile(kinematics, speed))
-        y0 = fixed_state(self.n, r0=self.r0, theta0=self.theta0, phi0=np.radians(phi0_deg))
+        y0 = self.initial_state(phi0_deg)
         return [(row, y0) for row in rows]
 
     def runs(self, inputs, *, progress: bool = True) -> np.ndarray:
