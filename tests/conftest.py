@@ -18,21 +18,26 @@ INTEGRATORS = "rotorvib.models.balancer.simulate"
 
 @pytest.hookimpl(tryfirst=True)     # before ``-m`` deselects by the markers added here
 def pytest_collection_modifyitems(items):
-    """A test that reads the reduced runs (its fixtures reach ``runs``) is a workflow test
+    """A test that reads the reduced runs (its fixtures reach ``run_dir``) is a workflow test
     (marker ``workflow``: ``pytest -m "not workflow"`` leaves it out with the runs it needs).
-    test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), most of the
-    suite's time, on one pytest-xdist worker (pyproject.toml) while the others take the library
-    tests; the other files with a test that reads the runs last, whole (a worker takes a file
-    at its first test: one taken early would wait for the runs with its other tests behind),
-    so that whichever worker is free then takes them once the runs exist. Among the library
-    tests, the files that can run the balancer's compiled integrators (their imports reach
-    them) come after the others: the first worker compiles them for the runs meanwhile, and
-    the others would wait on the compile lock."""
-    read_runs = set()
+    test_workflow.py first: it builds the reduced runs (tests/workflow_runs.py), the first and
+    then, at its first comparison of the two, the second, most of the suite's time, on one
+    pytest-xdist worker (pyproject.toml) while the others take the library tests; the other
+    files with a test that reads the runs last, whole (a worker takes a file at its first test:
+    one taken early would wait for the runs with its other tests behind), so that whichever
+    worker is free then takes them once the runs exist, those that compare the two runs before
+    those that read the first only: a worker that takes one before the second run exists waits
+    while that run's build keeps both cores busy, and the longest of them (test_cluster.py) is
+    not left to run alone at the end. Among the library tests, the files that can run the
+    balancer's compiled integrators (their imports reach them) come after the others: the first
+    worker compiles them for the runs meanwhile, and the others would wait on the compile lock."""
+    read_runs, read_both = set(), set()
     for item in items:
-        if "runs" in item.fixturenames:
+        if "run_dir" in item.fixturenames:
             item.add_marker(pytest.mark.workflow)
             read_runs.add(item.path)
+        if "runs" in item.fixturenames:
+            read_both.add(item.path)
 
     @cache
     def runs_integrators(path):
@@ -42,19 +47,30 @@ def pytest_collection_modifyitems(items):
         if item.path.name == "test_workflow.py":
             return 0
         if item.path in read_runs:
-            return 3
+            return 3 if item.path in read_both else 4
         return 2 if runs_integrators(item.path) else 1
     items.sort(key=order)
 
 
-@pytest.fixture(scope="session")
-def runs(tmp_path_factory, worker_id) -> list[Path]:
-    """The two reduced runs of the session (tests/workflow_runs.py), built once for all workers
-    in the folder they share."""
-    from workflow_runs import shared_runs
+def _shared_run(tmp_path_factory, worker_id, name: str) -> Path:
+    from workflow_runs import shared_run
 
     root = tmp_path_factory.getbasetemp()
-    return shared_runs(root if worker_id == "master" else root.parent)
+    return shared_run(root if worker_id == "master" else root.parent, name)
+
+
+@pytest.fixture(scope="session")
+def run_dir(tmp_path_factory, worker_id) -> Path:
+    """The first reduced run (tests/workflow_runs.py), built once for all workers in the folder
+    they share: to be read, or copied (workflow_runs.copy_run) to be changed."""
+    return _shared_run(tmp_path_factory, worker_id, "repo")
+
+
+@pytest.fixture(scope="session")
+def runs(run_dir, tmp_path_factory, worker_id) -> list[Path]:
+    """The two reduced runs of the session, the first and the sharded one
+    (tests/workflow_runs.py), the second built once for all workers when first asked for."""
+    return [run_dir, _shared_run(tmp_path_factory, worker_id, "sharded")]
 
 
 @pytest.fixture(scope="session")
@@ -66,12 +82,6 @@ def snakemake_here():
 
     with ForkedSnakemake(ROOT, dict(os.environ)) as command:
         yield command
-
-
-@pytest.fixture(scope="session")
-def run_dir(runs) -> Path:
-    """The first reduced run: to be read, or copied (workflow_runs.copy_run) to be changed."""
-    return runs[0]
 
 
 @pytest.fixture(scope="session")

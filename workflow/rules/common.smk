@@ -1,6 +1,7 @@
 # Helpers shared by all rules: configuration validation (before any job), paths, the figure
 # declaration, the code fingerprint every script rule receives and the configuration hash each
 # of its input datasets must carry.
+from functools import cache
 from importlib import import_module
 from pathlib import Path
 from types import SimpleNamespace
@@ -294,6 +295,17 @@ def report_entries():
     return entries
 
 
+@cache
+def rule_making(path):
+    """Which of ``workflow.rules`` makes ``path`` (the first that does, as
+    snakemake_rules.producer finds it), looked for once a path. Rules are only ever added
+    after the others, so the first that makes a path stays the first. Every job's input check
+    and every figure's group ask for it; looked for each time, a dry run of the reduced
+    configuration forked from a prepared Snakemake (tests/forked_snakemake.py) took 0.57 s
+    instead of 0.49 s."""
+    return producer(workflow.rules, path)
+
+
 def figure_rule(paper, name):
     """The name of the job that draws figure ``name`` of ``paper`` (its group's, named for the
     group's first figure, figures.smk)."""
@@ -308,15 +320,15 @@ def made_by(paper, name, kind):
     """How the report says a figure or table was made: the rule that drew or wrote it, its
     script, the drawing function, and the rules of the datasets it reads."""
     if kind == "table":
-        maker = producer(workflow.rules, TABLES[paper][name]["csv"])
-        return {"rule": maker.name, "script": script_name(maker)}
+        writer = rule_making(TABLES[paper][name]["csv"])
+        return {"rule": writer.name, "script": script_name(writer)}
     declared = FIGURES[paper][name]
     return {
         "rule": figure_rule(paper, name),
         "script": "workflow/scripts/figures.py",
         "function": f"rotorvib.papers.{paper}.figures.{declared['function']}",
         "datasets": {
-            d: producer(workflow.rules, dataset(paper, d)).name
+            d: rule_making(dataset(paper, d)).name
             for d in dict.fromkeys(declared["datasets"].values())
         },
     }
@@ -335,7 +347,7 @@ def figure_groups():
     for paper, figures in FIGURES.items():
         for name, declared in figures.items():
             makers = {
-                producer(workflow.rules, dataset(paper, d)).name
+                rule_making(dataset(paper, d)).name
                 for d in declared["datasets"].values()
             }
             groups.setdefault((paper, tuple(sorted(makers))), []).append(name)
@@ -447,7 +459,7 @@ def producer_of(path):
     """The rule that makes ``path`` in this run and the SHA-256 of the configuration it records
     in it (its parameters for that file's wildcards, rotorvib.pipeline.job.job_config).
     """
-    maker = producer(workflow.rules, path)
+    maker = rule_making(path)
     given = SimpleNamespace(**wildcards(maker, path))
     return {
         "rule": maker.name,
