@@ -49,7 +49,8 @@ def test_bad_inputs_are_refused():
 def test_a_study_dataset_states_its_band_and_dominant_input():
     """y = 10 x1 + x2 on the unit square: x1 dominates (ST = 100/101), the band of y spans
     [0.5, 10.45] at 5-95 %, and a value outside it is reported outside."""
-    from rotorvib.methods.sensitivity import band_statement, study_dataset
+    from rotorvib.methods.bands import band_statement
+    from rotorvib.methods.sensitivity import study_dataset
 
     spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
     x = sample(spec, 512, seed=1)
@@ -71,7 +72,7 @@ def test_a_study_dataset_states_its_band_and_dominant_input():
 def test_the_spread_of_a_band_edge_is_the_percentiles_standard_error():
     """For n uniform samples the p-quantile has standard error sqrt(p (1 - p) / n) (density
     1): the bootstrap spread of the 5 % and 95 % edges agrees within 15 %."""
-    from rotorvib.methods.sensitivity import percentile_spread
+    from rotorvib.methods.bands import percentile_spread
 
     y = np.random.default_rng(3).uniform(size=4000)
     spread = percentile_spread(y, [5.0, 95.0], resamples=400, seed=1)
@@ -89,7 +90,8 @@ def test_a_design_that_cannot_be_run_is_named():
 def test_an_output_that_does_not_vary_has_no_indices():
     """SALib gives 0 for a constant output; the variance shared out is 0/0: NaN, and the band
     statement says the output does not vary."""
-    from rotorvib.methods.sensitivity import band_statement, study_dataset
+    from rotorvib.methods.bands import band_statement
+    from rotorvib.methods.sensitivity import study_dataset
 
     spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
     x = sample(spec, 16, seed=1)
@@ -104,7 +106,8 @@ def test_a_band_holds_no_capped_value_and_an_output_without_values_has_no_index(
     """y = x1 where x1 < 0.8, no value (NaN, a run that never balances) elsewhere: the band is
     that of the valued points only -- never a cap at some t_end -- n_valued counts them, and
     the indices, which need every point, are NaN; an index wider than +/- 0.1 is unresolved."""
-    from rotorvib.methods.sensitivity import RESOLVED_HALF_WIDTH, band_statement, study_dataset
+    from rotorvib.methods.bands import RESOLVED_HALF_WIDTH, band_statement
+    from rotorvib.methods.sensitivity import study_dataset
 
     spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
     x = sample(spec, 256, seed=2)
@@ -127,7 +130,8 @@ def test_an_output_no_point_of_which_has_a_value_decides_nothing():
     Fig 7 case at beta = 0.001 never balances): no band, a NaN margin with a NaN uncertainty,
     which the comparison counts UNDETERMINED, and a statement that says why."""
     from rotorvib.comparison import Margin
-    from rotorvib.methods.sensitivity import band_statement, percentile_spread, study_dataset
+    from rotorvib.methods.bands import band_statement, percentile_spread
+    from rotorvib.methods.sensitivity import study_dataset
 
     spec = problem({"x1": (0.0, 1.0), "x2": (0.0, 1.0)})
     x = sample(spec, 16, seed=1)

@@ -163,7 +163,7 @@ class Reproduced:
 def within_band(ds, quantity: str, margin: tuple[float, float]) -> Margin:
     """The :class:`Margin` of "a value lies within the band of an uncertainty study" from the
     study dataset ``ds`` and ``(margin, uncertainty)`` of
-    :func:`rotorvib.methods.sensitivity.band_margin`, in the quantity's units."""
+    :func:`rotorvib.methods.bands.band_margin`, in the quantity's units."""
     q = list(ds.quantity_name.values).index(quantity)
     return Margin(*margin, str(ds.quantity_units.values[q]),
                   f"bootstrap of the band's edges over {ds.sizes['sample']} samples")

@@ -9,7 +9,8 @@ bootstrap resampling of the ``N`` base points.
 
 The evaluations are grouped by base point, so the first ``n (D + 2)`` of them are the design for
 ``n`` base points: :func:`sobol_indices` gives the indices at several ``n`` from one set of
-runs, which shows whether they have converged.
+runs, which shows whether they have converged. What a study's dataset says of a value against
+its bands is :mod:`rotorvib.methods.bands`, which reads the dataset without SALib.
 """
 
 from __future__ import annotations
@@ -20,12 +21,7 @@ from SALib.analyze import sobol as sobol_analyze
 from SALib.sample import sobol as sobol_sample
 
 from rotorvib.checks import finite_array, integer, sobol_design_problem
-
-
-#: A total index is reported only where the half-width of its 95 % interval is at most this:
-#: a wider interval says too little about the input at the sample size (the index lies in
-#: [0, 1]); the study states such an index as unresolved.
-RESOLVED_HALF_WIDTH = 0.1
+from rotorvib.methods.bands import RESOLVED_HALF_WIDTH
 
 
 def problem(ranges: dict[str, tuple[float, float]]) -> dict:
@@ -130,65 +126,3 @@ def study_dataset(spec: dict, x, outputs: dict, nominal: dict, units: dict, *, n
         attrs={"sobol_resamples": resamples, "sobol_seed": seed,
                "sobol_resolved_half_width": RESOLVED_HALF_WIDTH},
     )
-
-
-def percentile_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarray:
-    """Standard deviation of each of ``percentiles`` of the sample ``y`` (its values; NaN
-    marks a point without one) over ``resamples`` bootstrap resamples: how well a finite sample
-    pins a band's edges, or its median; NaN for each where no point has a value (every run
-    censored)."""
-    y = np.asarray(y, float)
-    y = y[np.isfinite(y)]
-    if y.size == 0:
-        return np.full(len(percentiles), np.nan)
-    rng = np.random.default_rng(seed)
-    draws = rng.integers(0, y.size, (resamples, y.size))
-    return np.percentile(y[draws], percentiles, axis=1).std(axis=1)
-
-
-def band_margin(ds: xr.Dataset, quantity: str, value: float) -> tuple[float, float]:
-    """How far ``value`` lies inside ``quantity``'s band (``min(value - low, high - value)``,
-    negative outside) and the uncertainty of that margin: twice the bootstrap standard deviation
-    of the nearer edge (:func:`percentile_spread`, the dataset's resamples and seed)."""
-    q = list(ds.quantity_name.values).index(quantity)
-    band, p = ds.band.values[q], ds.percentile.values
-    lo, hi = band[0], band[-1]
-    spread = percentile_spread(ds.y.values[q], [p[0], p[-1]], resamples=int(ds.attrs["sobol_resamples"]),
-                         seed=int(ds.attrs["sobol_seed"]))
-    nearer = 0 if value - lo <= hi - value else 1
-    return float(min(value - lo, hi - value)), float(2 * spread[nearer])
-
-
-def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[tuple[float, float], str]:
-    """``value``'s margin inside the outer percentiles of ``quantity``'s band with its
-    uncertainty (:func:`band_margin`), and a sentence with the band, the nominal value and the
-    input of largest total index (with its interval) at the largest sample, said to be
-    unresolved where its interval is wider than :data:`RESOLVED_HALF_WIDTH`."""
-    q = list(ds.quantity_name.values).index(quantity)
-    band, units = ds.band.values[q], str(ds.quantity_units.values[q])
-    lo, hi = band[0], band[-1]
-    st, conf = ds.ST.values[q, -1], ds.ST_conf.values[q, -1]
-    p = ds.percentile.values
-    valued, points = int(ds.n_valued[q]), ds.sizes["sample"]
-    if valued == 0:
-        return band_margin(ds, quantity, value), (
-            f"{value:.4g} {units}, but none of the {points} input points has a value (no run "
-            "balances by t_end): there is no band to compare it with")
-    if valued < points:
-        driver = "no Sobol index (it needs a value at every point)"
-    elif np.all(np.isnan(st)):
-        driver = "it does not vary over them (no Sobol index)"
-    else:
-        top = int(np.nanargmax(st))
-        index = (f"{ds.input_name.values[top]} ({st[top]:.2f} +/- {conf[top]:.2f}, "
-                 f"{int(ds.n_base[-1])} base points)")
-        driver = (f"largest total Sobol index: {index}" if conf[top] <= RESOLVED_HALF_WIDTH
-                  else f"the largest total Sobol index, {index}, is not resolved within "
-                       f"+/- {RESOLVED_HALF_WIDTH:g}")
-    over = ("the input ranges" if valued == points else
-            f"the {valued} of {points} input points where it has a value (the others never "
-            "balance by t_end)")
-    return band_margin(ds, quantity, value), (
-        f"{value:.4g} {units} against the {p[0]:g}-{p[-1]:g} % band {lo:.4g}-{hi:.4g} {units} "
-        f"(median {band[len(band) // 2]:.4g}, nominal {float(ds.nominal[q]):.4g}) over "
-        f"{over}; {driver}")

@@ -27,7 +27,7 @@ import xarray as xr
 from rotorvib.choices import VARIANT_JOIN, Close
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
-from rotorvib.methods.sensitivity import percentile_spread
+from rotorvib.methods.bands import percentile_spread
 from rotorvib.papers.b.choices import LAW_CHOICES
 from rotorvib.papers.b.setup import Setup, dataset_attrs
 from rotorvib.papers.b.stability_maps import balanced_modes

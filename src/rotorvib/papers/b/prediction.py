@@ -24,7 +24,7 @@ import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
-from rotorvib.methods.sensitivity import percentile_spread
+from rotorvib.methods.bands import percentile_spread
 from rotorvib.models.balancer.analysers import METRICS
 from rotorvib.models.balancer.passage import passage_peak
 from rotorvib.papers.b.choices import LAW_CHOICES

@@ -35,7 +35,8 @@ import xarray as xr
 
 from rotorvib.comparison import MATCH_TOL, Margin, Reproduced, within_band
 from rotorvib.io.coords import pick
-from rotorvib.methods.sensitivity import band_statement, problem, sample, study_dataset
+from rotorvib.methods.bands import band_statement
+from rotorvib.methods.sensitivity import problem, sample, study_dataset
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import LazyInputs, Setup, dataset_attrs
 

@@ -12,7 +12,8 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Reproduced, within_band
-from rotorvib.methods.sensitivity import band_statement, problem, sample, study_dataset
+from rotorvib.methods.bands import band_statement
+from rotorvib.methods.sensitivity import problem, sample, study_dataset
 from rotorvib.models.absorber.frequency_response import theta_eq20
 from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor, dual_to_vector
 
