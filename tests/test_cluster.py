@@ -10,7 +10,6 @@ import pytest
 import yaml
 
 from conftest import ROOT
-from test_layout import workflow_rules
 from workflow_runs import REDUCED_SHARDED, copy_run, digests, job_counts, job_records, snakemake
 
 CLUSTER = ROOT / "workflow/cluster/one-node-slurm"

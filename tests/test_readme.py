@@ -3,7 +3,6 @@ cites them, no typed timing."""
 
 import re
 import shlex
-from pathlib import Path
 
 import pytest
 
