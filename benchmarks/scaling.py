@@ -2,7 +2,8 @@
 and at ``--factor`` times its runs, as one job and split into ``--shards`` shards.
 
 Each case runs through Snakemake (``-j2``) into its own results folder and is read back from
-the jobs' ``benchmark:`` files (CPU seconds per job) and the dataset (its runs).  It prints the
+the jobs' logs (the CPU seconds each states, :mod:`rotorvib.pipeline.job_logs`) and the dataset
+(its runs).  It prints the
 run-ups per CPU-second of every case, their ratio between the sizes (1 means a cost linear in
 the runs) and the shards' overhead per job (the CPU a shard costs beyond its share of the
 unsharded job: imports, loading the compiled engine, writing its file), and a fit of the CPU
@@ -18,7 +19,6 @@ The README quotes no timing: this script measures it on the machine at hand.
 from __future__ import annotations
 
 import argparse
-import csv
 import shutil
 import subprocess
 import sys
@@ -26,6 +26,8 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+
+from rotorvib.pipeline.job_logs import jobs_cpu
 
 STUDY = "beta"
 
@@ -45,12 +47,8 @@ def run_case(name: str, n: int, shards: int) -> tuple[int, float, int]:
                         "--configfile", "config/config.yaml", str(config), "--", str(target)],
                        check=True)
         runs = xr.open_dataset(target).balance_time.size
-        files = sorted((folder / "benchmarks").glob(f"b_balance_{STUDY}*.tsv"))
-        cpu = 0.0
-        for path in files:
-            with open(path, newline="") as fh:
-                cpu += sum(float(row["cpu_time"]) for row in csv.DictReader(fh, delimiter="\t"))
-        return runs, cpu, len(files)
+        logs = sorted((folder / "logs").glob(f"b_balance_{STUDY}*.log"))
+        return runs, jobs_cpu(logs), len(logs)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
         config.unlink(missing_ok=True)

@@ -66,7 +66,7 @@ def test_the_counts_are_the_runs_the_workflow_makes(run_dir, tmp_path):
                                      + basin.ic_balance_time.size)
     assert set(checked) <= set(costs)
     assert all(c.cpu_per_run > 0 and c.runs >= c.counted for c in costs.values())
-    text = estimate.report(list(costs.values()), estimate.benchmark_cpu(folder), 2)
+    text = estimate.report(list(costs.values()), estimate.pass_cpu(folder), 2)
     assert f"run-ups: {sum(c.runs for c in costs.values())};" in text
     for cost in costs.values():    # real work never reads as 0.0: uncounted jobs ran for real
         line = next(row for row in text.splitlines() if row.startswith(cost.dataset + " "))

@@ -17,7 +17,7 @@
 2. **Time.** Each job's sample of run-ups is integrated for real on one thread: the CPU
    seconds of one run-up of that study, on this machine.
 3. **Report.** Per job (named by the dataset it writes): run-ups, CPU per run-up, their
-   product; the CPU the counting pass spent on everything else (its jobs' benchmarks:
+   product; the CPU the counting pass spent on everything else (its jobs' logs:
    stability maps, boundaries, the few single runs, the batches it ran);
    the total in CPU-hours, and the wall time on ``--cores`` cores if the work shared them
    perfectly.
@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import argparse
 import atexit
-import csv
 import os
 import pickle
 import shutil
@@ -41,6 +40,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from rotorvib.pipeline.job_logs import jobs_cpu
 
 COUNT_ENV = "ROTORVIB_COUNT_RUNS"
 MARKER = "counting-pass"
@@ -166,13 +167,10 @@ def job_costs(folder: Path) -> list[JobCost]:
     return costs
 
 
-def benchmark_cpu(folder: Path) -> float:
-    """CPU seconds the jobs of a counting pass spent, by their benchmark files."""
-    total = 0.0
-    for path in (folder / "benchmarks").glob("*.tsv"):
-        with open(path) as f:
-            total += sum(float(row["cpu_time"]) for row in csv.DictReader(f, delimiter="\t"))
-    return total
+def pass_cpu(folder: Path) -> float:
+    """CPU seconds the jobs of a counting pass spent, as each job's log states
+    (:mod:`rotorvib.pipeline.job_logs`)."""
+    return jobs_cpu(sorted((folder / "logs").glob("*.log")))
 
 
 def counting_pass(root: Path, configfiles: list[str], cores: int, results: str,
@@ -241,7 +239,7 @@ def main(argv: list[str] | None = None) -> None:
           f"'rest' below), then {SAMPLE} run-ups of each job are timed", flush=True)
     try:
         folder = counting_pass(Path.cwd(), args.configfiles, args.cores, results)
-        print(report(job_costs(folder), benchmark_cpu(folder), args.cores))
+        print(report(job_costs(folder), pass_cpu(folder), args.cores))
     finally:
         if not args.keep:
             shutil.rmtree(Path.cwd() / results, ignore_errors=True)

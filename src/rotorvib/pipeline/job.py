@@ -16,11 +16,18 @@ the fingerprints, the report): a job's code fingerprint holds the science it run
 start-up, so that an edit of the machinery reruns no job.
 """
 
+import atexit
 import gc
 import logging
+import os
 import sys
 
 gc.disable()
+
+#: The last line of a finished job's log: the CPU seconds its process spent, user and system, its
+#: threads and the processes it waited for included (:func:`start`; read by
+#: :func:`rotorvib.pipeline.job_logs.job_cpu`, which a job never imports).
+CPU_LINE = "job CPU: {:.3f} s"
 
 #: The parameter through which the workflow gives a job the rule that makes each input dataset
 #: and the hash of that rule's configuration (checked by
@@ -37,7 +44,8 @@ def job_config(params) -> dict:
 def start(log: str) -> None:
     """End the job's start-up: the objects made so far frozen, the collector on again, and
     standard error (warnings, a traceback, the library's progress messages with their time:
-    rotorvib.io.progress) written to the job's ``log`` file, line by line."""
+    rotorvib.io.progress) written to the job's ``log`` file, line by line, ending, as the
+    process exits, with the CPU it spent (:data:`CPU_LINE`)."""
     gc.freeze()
     gc.enable()
     sys.stderr = open(log, "w", buffering=1)
@@ -46,3 +54,10 @@ def start(log: str) -> None:
     library = logging.getLogger("rotorvib")       # the package's messages only, not others'
     library.addHandler(handler)
     library.setLevel(logging.INFO)
+    atexit.register(_log_cpu)
+
+
+def _log_cpu() -> None:
+    times = os.times()
+    spent = times.user + times.system + times.children_user + times.children_system
+    print(CPU_LINE.format(spent), file=sys.stderr, flush=True)
