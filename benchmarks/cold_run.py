@@ -17,6 +17,13 @@ the comparison weighs on both alike, then the ratio of HEAD's CPU and wall time 
 each round and over all of them (a ratio of sums)::
 
     python -m benchmarks.cold_run --against 6ede2d7 --rounds 2
+
+A run's CPU is also given job by job: a ``sitecustomize`` hook put on the run's path (for the
+measurement only, :data:`JOB_HOOK`) records the CPU of every job process as it exits, so that
+the comparison gives the ratio of the CPU of the rules both revisions have (a study's shards
+and gathering counted as its rule, every figure job as one "figures"). A revision whose jobs
+are forked from a server (6ede2d7's warm start) records none: set ``ROTORVIB_NO_WARM_START=1``
+to run its jobs as fresh processes; the counts of jobs recorded are printed.
 """
 
 from __future__ import annotations
@@ -51,9 +58,36 @@ def children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
+#: The ``sitecustomize`` of a measured run: every process that runs a Snakemake script job
+#: writes, as it exits, its rule and CPU seconds (its threads and children included) to a file
+#: in the folder ``$ROTORVIB_JOB_CPU``.
+JOB_HOOK = """import atexit, json, os, sys
+
+
+def _job_cpu():
+    job = getattr(sys.modules.get("__main__"), "snakemake", None)
+    if job is not None:
+        t = os.times()
+        cpu = t.user + t.system + t.children_user + t.children_system
+        with open(os.path.join(os.environ["ROTORVIB_JOB_CPU"], f"{os.getpid()}.json"), "w") as f:
+            json.dump({"rule": job.rule, "cpu": cpu}, f)
+
+
+atexit.register(_job_cpu)
+"""
+
+
+def rule_group(rule: str) -> str:
+    """The rule a job's CPU is counted under across revisions: a study's shard under the study's
+    rule, every figure job under "figures" (revisions group figures into jobs differently)."""
+    return "figures" if rule.startswith("figures_") else rule.removesuffix("_shard")
+
+
 def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
     """Clone ``repository`` at ``revision`` into a scratch folder, run ``snakemake -j<cores>``
-    there and return the record: commit, date, cores, machine, wall and CPU seconds."""
+    there and return the record: commit, date, cores, machine, wall and CPU seconds, and the
+    CPU seconds of its jobs by :func:`rule_group` (``jobs_cpu_s``; ``jobs``: how many jobs
+    recorded theirs)."""
     commit = subprocess.run(["git", "rev-parse", "--verify", f"{revision}^{{commit}}"],
                             cwd=repository, check=True, capture_output=True,
                             text=True).stdout.strip()
@@ -62,17 +96,26 @@ def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
         subprocess.run(["git", "clone", "--quiet", "--no-checkout", str(repository), str(clone)],
                        check=True)
         subprocess.run(["git", "checkout", "--quiet", commit], cwd=clone, check=True)
-        env = {**os.environ, "PYTHONPATH": os.pathsep.join(
-            filter(None, [str(clone / "src"), os.environ.get("PYTHONPATH")]))}
+        hook, records = Path(scratch) / "hook", Path(scratch) / "jobs"
+        hook.mkdir()
+        records.mkdir()
+        (hook / "sitecustomize.py").write_text(JOB_HOOK)
+        env = {**os.environ, "ROTORVIB_JOB_CPU": str(records), "PYTHONPATH": os.pathsep.join(
+            filter(None, [str(clone / "src"), str(hook), os.environ.get("PYTHONPATH")]))}
         cpu, start = children_cpu(), time.perf_counter()
         subprocess.run([str(Path(sys.executable).parent / "snakemake"), f"-j{cores}",
                         "--quiet", "rules"], cwd=clone, env=env, check=True,
                        stdout=subprocess.DEVNULL)
         wall, cpu = time.perf_counter() - start, children_cpu() - cpu
+        jobs = [json.loads(p.read_text()) for p in sorted(records.glob("*.json"))]
+    by_rule: dict[str, float] = {}
+    for job in jobs:
+        by_rule[rule_group(job["rule"])] = by_rule.get(rule_group(job["rule"]), 0.0) + job["cpu"]
     return {"commit": commit, "date": datetime.now(timezone.utc).date().isoformat(),
             "cores": cores, "machine": {"cpus": os.cpu_count(), "cpu": cpu_model(),
                                         "python": platform.python_version()},
-            "wall_s": round(wall, 1), "cpu_s": round(cpu, 1)}
+            "wall_s": round(wall, 1), "cpu_s": round(cpu, 1), "jobs": len(jobs),
+            "jobs_cpu_s": {rule: round(v, 2) for rule, v in sorted(by_rule.items())}}
 
 
 def side_by_side(run, revisions: tuple[str, str], rounds: int) -> list[dict]:
@@ -96,6 +139,16 @@ def ratios(records: list[dict], key: str) -> tuple[list[float], float]:
     return per_round, total
 
 
+def common_jobs_ratio(records: list[dict]) -> tuple[float, list[str]]:
+    """The ratio of the CPU of the first revision's jobs to the second's over the rules both
+    recorded in every round (:func:`rule_group`; sums over the rounds), and those rules."""
+    first, second = records[0]["revision"], records[1]["revision"]
+    common = set.intersection(*(set(r["jobs_cpu_s"]) for r in records))
+    total = {rev: sum(r["jobs_cpu_s"][rule] for r in records if r["revision"] == rev
+                      for rule in common) for rev in (first, second)}
+    return total[first] / total[second], sorted(common)
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cores", type=int, default=2)
@@ -112,11 +165,20 @@ def main(argv=None) -> None:
                                ("HEAD", args.against), args.rounds)
         for r in records:
             print(f"round {r['round']}, {r['revision']} ({r['commit'][:7]}): {r['wall_s']} s "
-                  f"wall, {r['cpu_s']} s CPU")
+                  f"wall, {r['cpu_s']} s CPU; {r['jobs']} jobs recorded their CPU, "
+                  f"{sum(r['jobs_cpu_s'].values()):.1f} s")
         for key, name in (("cpu_s", "CPU"), ("wall_s", "wall")):
             per_round, total = ratios(records, key)
             print(f"HEAD / {args.against}, {name}: {total:.3f} (rounds: "
                   f"{', '.join(f'{x:.3f}' for x in per_round)})")
+        if all(r["jobs"] for r in records):
+            ratio, common = common_jobs_ratio(records)
+            print(f"HEAD / {args.against}, CPU of the jobs of the {len(common)} rules both "
+                  f"have: {ratio:.3f}")
+            for rule in common:
+                cpu = {rev: sum(r["jobs_cpu_s"][rule] for r in records if r["revision"] == rev)
+                       for rev in ("HEAD", args.against)}
+                print(f"  {rule:28s} {cpu['HEAD']:8.1f} {cpu[args.against]:8.1f}")
         return
     record = cold_run(Path.cwd(), args.cores)
     print(f"cold snakemake -j{args.cores} at {record['commit'][:7]}: {record['wall_s']} s wall, "

@@ -1,7 +1,10 @@
 """The side-by-side comparison of two revisions' cold runs (benchmarks/cold_run.py --against):
-its alternating order cancels a machine that drifts during the comparison, and its ratios are
-those of the sums."""
+its alternating order cancels a machine that drifts during the comparison, its ratios are
+those of the sums, and its hook records each job's CPU as the operating system accounts it."""
 
+import json
+import resource
+import subprocess
 import sys
 
 import pytest
@@ -9,7 +12,14 @@ import pytest
 from conftest import ROOT
 
 sys.path.insert(0, str(ROOT))                 # the benchmarks are modules of the repository
-from benchmarks.cold_run import main, ratios, side_by_side  # noqa: E402
+from benchmarks.cold_run import (  # noqa: E402
+    JOB_HOOK,
+    common_jobs_ratio,
+    main,
+    ratios,
+    rule_group,
+    side_by_side,
+)
 
 
 def drifting_machine(cost: dict[str, float], drift: float):
@@ -50,3 +60,39 @@ def test_no_rounds_is_refused_before_any_run(capsys):
     with pytest.raises(SystemExit):
         main(["--against", "HEAD~1", "--rounds", "0"])
     assert "--rounds: at least 1, not 0" in capsys.readouterr().err
+
+
+def test_the_hook_records_a_jobs_rule_and_cpu_as_it_exits(tmp_path):
+    hook, records = tmp_path / "hook", tmp_path / "jobs"
+    hook.mkdir()
+    records.mkdir()
+    (hook / "sitecustomize.py").write_text(JOB_HOOK)
+    job = ("from types import SimpleNamespace\nimport time\n"
+           "snakemake = SimpleNamespace(rule='b_ga_shard')\n"
+           "end = time.process_time() + 0.3\nwhile time.process_time() < end: pass\n")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([sys.executable, "-c", job], check=True,
+                   env={"PYTHONPATH": str(hook), "ROTORVIB_JOB_CPU": str(records)})
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    accounted = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    [record] = [json.loads(p.read_text()) for p in records.glob("*.json")]
+    assert record["rule"] == "b_ga_shard"
+    assert 0.3 <= record["cpu"] and abs(record["cpu"] - accounted) < 0.05, (record, accounted)
+    # a process that runs no job records nothing
+    subprocess.run([sys.executable, "-c", "pass"], check=True,
+                   env={"PYTHONPATH": str(hook), "ROTORVIB_JOB_CPU": str(records)})
+    assert len(list(records.glob("*.json"))) == 1
+
+
+def test_jobs_are_compared_over_the_rules_both_revisions_have():
+    assert [rule_group(r) for r in ("b_ga_shard", "b_ga", "figures_b_fig8", "comparison")] == [
+        "b_ga", "b_ga", "figures", "comparison"]
+    records = [{"round": 1, "revision": "HEAD", "jobs_cpu_s": {"b_ga": 60.0, "figures": 30.0,
+                                                                "b_new_study": 5.0}},
+               {"round": 1, "revision": "old", "jobs_cpu_s": {"b_ga": 55.0, "figures": 25.0}},
+               {"round": 2, "revision": "old", "jobs_cpu_s": {"b_ga": 57.0, "figures": 23.0}},
+               {"round": 2, "revision": "HEAD", "jobs_cpu_s": {"b_ga": 62.0, "figures": 28.0,
+                                                                "b_new_study": 5.0}}]
+    ratio, common = common_jobs_ratio(records)
+    assert common == ["b_ga", "figures"]                 # the new study is left out
+    assert ratio == pytest.approx((60 + 30 + 62 + 28) / (55 + 25 + 57 + 23))
