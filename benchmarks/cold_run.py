@@ -103,10 +103,14 @@ def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
         env = {**os.environ, "ROTORVIB_JOB_CPU": str(records), "PYTHONPATH": os.pathsep.join(
             filter(None, [str(clone / "src"), str(hook), os.environ.get("PYTHONPATH")]))}
         cpu, start = children_cpu(), time.perf_counter()
-        subprocess.run([str(Path(sys.executable).parent / "snakemake"), f"-j{cores}",
-                        "--quiet", "rules"], cwd=clone, env=env, check=True,
-                       stdout=subprocess.DEVNULL)
-        wall, cpu = time.perf_counter() - start, children_cpu() - cpu
+        with open(Path(scratch) / "snakemake.log", "w+") as log:
+            done = subprocess.run([str(Path(sys.executable).parent / "snakemake"),
+                                   f"-j{cores}", "--quiet", "rules"], cwd=clone, env=env,
+                                  stdout=log, stderr=subprocess.STDOUT)
+            wall, cpu = time.perf_counter() - start, children_cpu() - cpu
+            if done.returncode:
+                log.seek(0)
+                raise RuntimeError(f"the cold run at {commit[:7]} failed:\n{log.read()[-3000:]}")
         jobs = [json.loads(p.read_text()) for p in sorted(records.glob("*.json"))]
     by_rule: dict[str, float] = {}
     for job in jobs:
