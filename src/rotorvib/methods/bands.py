@@ -3,8 +3,9 @@ of a value: how far it lies inside a quantity's band, how well the sample pins t
 edges (bootstrap), and a sentence with the input that drives the quantity most.
 
 Apart from :mod:`rotorvib.methods.sensitivity` because it needs no SALib (and so no
-``scipy.stats``, half a second of a job's start-up): the jobs that state claims read the
-studies' datasets with it, and only the study jobs compute them.
+``scipy.stats``, about half a second to import where nothing else has imported scipy's
+submodules): the jobs that state claims read the studies' datasets with it, and only the study
+jobs compute them.
 """
 
 from __future__ import annotations
