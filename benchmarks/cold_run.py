@@ -114,7 +114,8 @@ def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
         jobs = [json.loads(p.read_text()) for p in sorted(records.glob("*.json"))]
     by_rule: dict[str, float] = {}
     for job in jobs:
-        by_rule[rule_group(job["rule"])] = by_rule.get(rule_group(job["rule"]), 0.0) + job["cpu"]
+        group = rule_group(job["rule"])
+        by_rule[group] = by_rule.get(group, 0.0) + job["cpu"]
     return {"commit": commit, "date": datetime.now(timezone.utc).date().isoformat(),
             "cores": cores, "machine": {"cpus": os.cpu_count(), "cpu": cpu_model(),
                                         "python": platform.python_version()},
@@ -143,14 +144,20 @@ def ratios(records: list[dict], key: str) -> tuple[list[float], float]:
     return per_round, total
 
 
+def rules_cpu(records: list[dict], revision: str, rules) -> dict[str, float]:
+    """The CPU seconds of each of ``rules`` in ``revision``'s runs of ``records``, summed over
+    the rounds."""
+    return {rule: sum(r["jobs_cpu_s"][rule] for r in records if r["revision"] == revision)
+            for rule in rules}
+
+
 def common_jobs_ratio(records: list[dict]) -> tuple[float, list[str]]:
     """The ratio of the CPU of the first revision's jobs to the second's over the rules both
     recorded in every round (:func:`rule_group`; sums over the rounds), and those rules."""
     first, second = records[0]["revision"], records[1]["revision"]
-    common = set.intersection(*(set(r["jobs_cpu_s"]) for r in records))
-    total = {rev: sum(r["jobs_cpu_s"][rule] for r in records if r["revision"] == rev
-                      for rule in common) for rev in (first, second)}
-    return total[first] / total[second], sorted(common)
+    common = sorted(set.intersection(*(set(r["jobs_cpu_s"]) for r in records)))
+    total = {rev: sum(rules_cpu(records, rev, common).values()) for rev in (first, second)}
+    return total[first] / total[second], common
 
 
 def main(argv=None) -> None:
@@ -179,10 +186,9 @@ def main(argv=None) -> None:
             ratio, common = common_jobs_ratio(records)
             print(f"HEAD / {args.against}, CPU of the jobs of the {len(common)} rules both "
                   f"have: {ratio:.3f}")
+            head, other = (rules_cpu(records, rev, common) for rev in ("HEAD", args.against))
             for rule in common:
-                cpu = {rev: sum(r["jobs_cpu_s"][rule] for r in records if r["revision"] == rev)
-                       for rev in ("HEAD", args.against)}
-                print(f"  {rule:28s} {cpu['HEAD']:8.1f} {cpu[args.against]:8.1f}")
+                print(f"  {rule:28s} {head[rule]:8.1f} {other[rule]:8.1f}")
         return
     record = cold_run(Path.cwd(), args.cores)
     print(f"cold snakemake -j{args.cores} at {record['commit'][:7]}: {record['wall_s']} s wall, "
