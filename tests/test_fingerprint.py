@@ -8,6 +8,7 @@ from rotorvib.pipeline import fingerprint as fingerprints
 from rotorvib.pipeline.fingerprint import (
     behaviour_digest,
     code_fingerprint,
+    forget_modules,
     import_closure,
     imported_names,
     normalised_source,
@@ -36,7 +37,7 @@ def tree(tmp_path):
 
 
 def fingerprint(tree, *extra):
-    code_fingerprint.cache_clear()
+    forget_modules()
     src, script = tree
     return code_fingerprint(str(script), *extra, root=str(src))
 

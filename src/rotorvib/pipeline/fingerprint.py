@@ -14,7 +14,8 @@ visible in its source; the rule passes them as extra entry points.
 Parsing every module costs about half a second, paid by every ``snakemake`` command: a module's
 imports and the digest of its normalised tree are kept in a memo (``__pycache__/fingerprints``
 beside this module), keyed by the module's text, this module's own code and Python's version,
-so an entry never outlives what it was computed from.
+so an entry never outlives what it was computed from.  Within a process each module is read
+once, for every script that imports it (:func:`forget_modules` reads the tree afresh).
 """
 
 from __future__ import annotations
@@ -68,6 +69,19 @@ def module_file(name: str, root: Path) -> Path | None:
         if candidate.is_file():
             return candidate
     return None
+
+
+@lru_cache(maxsize=None)
+def _module(name: str, root: Path) -> tuple[str, frozenset[str], str] | None:
+    """Module ``name`` under ``root`` as this process first reads it: its text, the names its
+    imports may load and its behaviour digest, or None when it has no source there.  Read once
+    per process, for every script's closure: a ``snakemake`` command evaluates its rules
+    against one state of the tree (as :func:`code_fingerprint` is memoised)."""
+    path = module_file(name, root)
+    if path is None:
+        return None
+    text = path.read_text(encoding="utf-8")
+    return text, imported_names(text, name, path.name == "__init__.py"), behaviour_digest(text)
 
 
 def _absolute(node: ast.ImportFrom, importer: str | None, is_package: bool) -> str:
@@ -127,12 +141,10 @@ def import_closure(*entries: str | Path, root: str | Path = "src") -> tuple[str,
         for name in _with_parents(pending.pop()):
             if name in seen or name.split(".")[0] != PACKAGE:
                 continue
-            path = module_file(name, root)
-            if path is None:
+            if (module := _module(name, root)) is None:
                 continue
             seen.add(name)
-            pending += imported_names(path.read_text(encoding="utf-8"), name,
-                                      path.name == "__init__.py")
+            pending += module[1]
     return tuple(sorted(seen))
 
 
@@ -166,6 +178,12 @@ def code_fingerprint(*entries: str, root: str = "src") -> str:
     ``import_closure(*entries)``."""
     digest = hashlib.sha256()
     for name in import_closure(*entries, root=root):
-        text = module_file(name, Path(root)).read_text(encoding="utf-8")
-        digest.update(f"{name}\0{behaviour_digest(text)}\0".encode())
+        digest.update(f"{name}\0{_module(name, Path(root))[2]}\0".encode())
     return digest.hexdigest()
+
+
+def forget_modules() -> None:
+    """Read the tree afresh: forget the modules and fingerprints this process has read (as a
+    new ``snakemake`` command would), keeping the memo of parsed texts."""
+    _module.cache_clear()
+    code_fingerprint.cache_clear()
