@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 
 from rotorvib.methods.ga import minimise, minimise_many, pareto_front
-from rotorvib.models.absorber.parameters import dual_to_vector
-from rotorvib.papers.c.optimise import design_bounds, resonance_objective, tune_dual_absorber
+from rotorvib.models.absorber.parameters import design_bounds, dual_to_vector
+from rotorvib.papers.c.optimise import resonance_objective, tune_dual_absorber
 
 
 def _shifted_sphere(x):

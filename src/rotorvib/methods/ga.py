@@ -1,5 +1,9 @@
 """Seeded, vectorised genetic-algorithm minimisation (pymoo) with a per-generation history, and
-the Pareto front of two or more objectives by NSGA-II."""
+the Pareto front of two or more objectives by NSGA-II.
+
+Importing this module imports pymoo (and ``scipy.spatial``, about a tenth of a second): a module
+that only names the results imports them under ``TYPE_CHECKING``, and one whose other functions
+serve jobs that run no search imports the search where it runs it."""
 
 from __future__ import annotations
 

@@ -10,15 +10,15 @@ bootstrap resampling of the ``N`` base points.
 The evaluations are grouped by base point, so the first ``n (D + 2)`` of them are the design for
 ``n`` base points: :func:`sobol_indices` gives the indices at several ``n`` from one set of
 runs, which shows whether they have converged. What a study's dataset says of a value against
-its bands is :mod:`rotorvib.methods.bands`, which reads the dataset without SALib.
+its bands is :mod:`rotorvib.methods.bands`, which reads the dataset without SALib.  SALib
+(with ``scipy.stats``, about 0.4 s) is imported by the two functions that call it: a job that
+reads a study's rows through its paper's module does not load it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import xarray as xr
-from SALib.analyze import sobol as sobol_analyze
-from SALib.sample import sobol as sobol_sample
 
 from rotorvib.checks import finite_array, integer, sobol_design_problem
 from rotorvib.methods.bands import RESOLVED_HALF_WIDTH
@@ -38,6 +38,8 @@ def sample(spec: dict, n_base: int, seed: int) -> np.ndarray:
     """The ``n_base (D + 2)`` input points of Saltelli's scheme (``n_base``: a power of 2)."""
     if problem_text := sobol_design_problem(integer("n_base", n_base, 2), [n_base]):
         raise ValueError(f"n_base: {problem_text}")
+    from SALib.sample import sobol as sobol_sample
+
     return sobol_sample.sample(spec, n_base, calc_second_order=False, seed=seed)
 
 
@@ -47,6 +49,8 @@ def sobol_indices(spec: dict, y, n_bases, *, resamples: int, seed: int,
     each of shape ``(len(n_bases), D)``, from the first ``n (D + 2)`` outputs ``y`` for each
     ``n`` of ``n_bases``.  Non-finite outputs raise ``ValueError``; an output that does not vary
     has no variance to share out, and its indices are NaN (undefined; SALib would give 0)."""
+    from SALib.analyze import sobol as sobol_analyze
+
     d = spec["num_vars"]
     y = finite_array("y", y, shape=(None,))
     out = {key: np.empty((len(n_bases), d)) for key in ("S1", "S1_conf", "ST", "ST_conf")}

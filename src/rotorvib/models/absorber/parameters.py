@@ -85,6 +85,13 @@ def dual_to_vector(sets) -> np.ndarray:
     return np.array([a.m, b.m, a.k, b.k, a.c, b.c, a.d, b.d])
 
 
+def design_bounds(bounds: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Lower and upper bounds in DUAL_NAMES order from ``{"m": [lo, hi], "k": ..., "c": ...,
+    "d": ...}`` (the paper gives one interval per kind, shared by both sets)."""
+    pairs = [bounds[name[0]] for name in DUAL_NAMES]
+    return np.array([p[0] for p in pairs], float), np.array([p[1] for p in pairs], float)
+
+
 def undamped(sets) -> tuple[AbsorberSet, ...]:
     """The same absorber sets with zero damping (paper C, Fig 5)."""
     return tuple(replace(s, c=0.0) for s in sets)

@@ -21,15 +21,18 @@ further from it than the standard error of its own mean balance time over the sa
 from __future__ import annotations
 
 from functools import partial
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
-from rotorvib.methods.ga import ParetoFront, pareto_front
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.choices import R_CHOICE, ZETA_CHOICE
 from rotorvib.papers.b.setup import Setup, dataset_attrs
+
+if TYPE_CHECKING:
+    from rotorvib.methods.ga import ParetoFront
 
 _claim = partial(Reproduced.claim, "B")
 
@@ -77,6 +80,8 @@ def pareto_dataset(setup: Setup, *, kinematics: str, eps_bar: float, speed: floa
                    n_gen: int, censored_penalty: float, paper_designs) -> xr.Dataset:
     """The NSGA-II front over the box ``beta_bounds x mass_bounds`` and the paper's designs
     ``[(beta, m), ...]`` (Table 2's rows) on the same objectives."""
+    from rotorvib.methods.ga import pareto_front  # pymoo: loaded by the search's job only
+
     phi = initial_positions(positions, seed)
     runs = design_runs(setup, phi, kinematics=kinematics, eps_bar=eps_bar, speed=speed)
     objectives = robust_objectives(runs, censored_penalty * setup.criterion.t_end)

@@ -18,22 +18,24 @@ also evaluated at every mass of the front, the curve the dual absorber has to be
 from __future__ import annotations
 
 from functools import partial
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
-from rotorvib.methods.ga import ParetoFront, pareto_front
 from rotorvib.models.absorber.frequency_response import (amplitude, bare_rotor_amplitude,
                                                          dimensionless_amplitude, rotor_peak,
                                                          theta_eq20)
-from rotorvib.models.absorber.parameters import (DUAL_NAMES, AbsorberSet, Rotor,
+from rotorvib.models.absorber.parameters import (DUAL_NAMES, AbsorberSet, Rotor, design_bounds,
                                                  dual_from_vector, dual_to_vector)
 from rotorvib.models.absorber.time_response import linear_response
 from rotorvib.models.absorber.tuning import den_hartog_single
-from rotorvib.papers.c.optimise import design_bounds
 from rotorvib.papers.c.studies import REFERENCE as STUDIES_REFERENCE
+
+if TYPE_CHECKING:
+    from rotorvib.methods.ga import ParetoFront
 
 REFERENCE = f"{STUDIES_REFERENCE}; section 4 (bounds), beyond the paper"
 _claim = partial(Reproduced.claim, "C")
@@ -75,6 +77,8 @@ def band_peak(rotor: Rotor, x, w) -> np.ndarray:
 def broadband_front(rotor: Rotor, bounds: dict, w, **nsga) -> ParetoFront:
     """NSGA-II front of (band peak of D over ``w``, added mass) within the paper's bounds;
     ``nsga``: ``pop_size``, ``n_gen``, ``seed``, ``sbx_eta``, ``pm_eta``."""
+    from rotorvib.methods.ga import pareto_front  # pymoo: loaded by the search's job only
+
     lower, upper = design_bounds(bounds)
     return pareto_front(lambda x: np.column_stack([band_peak(rotor, x, w), added_mass(x)]), 2,
                         lower, upper, **nsga)

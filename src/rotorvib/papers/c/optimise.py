@@ -6,14 +6,7 @@ import numpy as np
 
 from rotorvib.methods.ga import GAResult, minimise
 from rotorvib.models.absorber.frequency_response import theta_eq20
-from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
-
-
-def design_bounds(bounds: dict) -> tuple[np.ndarray, np.ndarray]:
-    """Lower and upper bounds in DUAL_NAMES order from ``{"m": [lo, hi], "k": ..., "c": ...,
-    "d": ...}`` (the paper gives one interval per kind, shared by both sets)."""
-    pairs = [bounds[name[0]] for name in DUAL_NAMES]
-    return np.array([p[0] for p in pairs], float), np.array([p[1] for p in pairs], float)
+from rotorvib.models.absorber.parameters import Rotor, design_bounds
 
 
 def resonance_objective(rotor: Rotor, printed_determinant: bool = False):

@@ -8,22 +8,25 @@ variables carry ``long_name`` and ``units``; writing (with provenance) is left t
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import label_coord
-from rotorvib.methods.ga import GAResult
 from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
                                                          dimensionless_amplitude,
                                                          natural_frequencies, rotor_peak,
                                                          steady_state, theta_eq20)
-from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, dual_from_vector,
-                                                 dual_to_vector, effective_mass_ratio, undamped)
+from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, design_bounds,
+                                                 dual_from_vector, dual_to_vector,
+                                                 effective_mass_ratio, undamped)
 from rotorvib.models.absorber.time_response import (linear_response, response_times, simulate,
                                                     undamped_resonance_envelope)
 from rotorvib.models.absorber.tuning import CONSTRUCTIONS, den_hartog_single, mass_ratio_family
-from rotorvib.papers.c.optimise import design_bounds
+
+if TYPE_CHECKING:       # the GA's result is only named here: pymoo stays unloaded
+    from rotorvib.methods.ga import GAResult
 
 REFERENCE = ("Paper C: A dual dynamic vibration absorber for the torsional vibration of a rotor, "
              "tuned by a genetic algorithm (Persian, 2024; journal, volume and pages not in the "
