@@ -65,6 +65,25 @@ def test_imports_inside_functions_count(tree):
     assert "rotorvib.models.engine" in import_closure("rotorvib.papers.c", root=src)
 
 
+def test_imports_a_type_checker_alone_reads_are_not_dependencies(tree):
+    """An ``if TYPE_CHECKING:`` block never runs (its ``else`` does): an annotation's type is no
+    code of the job's."""
+    src, _ = tree
+    write(src, "rotorvib/papers/c.py", """\
+        import typing
+        from typing import TYPE_CHECKING
+        if TYPE_CHECKING:
+            from rotorvib.models import engine
+        else:
+            import rotorvib.models
+        if typing.TYPE_CHECKING:
+            import rotorvib.papers.b
+        """)
+    closure = import_closure("rotorvib.papers.c", root=src)
+    assert "rotorvib.models" in closure
+    assert not {"rotorvib.models.engine", "rotorvib.models.run", "rotorvib.papers.b"} & set(closure)
+
+
 def test_comments_docstrings_and_layout_do_not_change_the_fingerprint(tree):
     src, _ = tree
     before = fingerprint(tree)

@@ -2,8 +2,9 @@
 
 The workflow gives every script rule a ``code`` parameter, the SHA-256 of the *behaviour* of the
 library modules the script can load: the import closure of the script inside the ``rotorvib``
-package (every ``import`` and ``from ... import`` statement, at any depth, followed
-transitively, with the ``__init__`` of every enclosing package).  Each module enters the hash as
+package (every ``import`` and ``from ... import`` statement, at any depth but inside an
+``if TYPE_CHECKING:`` block, followed transitively, with the ``__init__`` of every enclosing
+package).  Each module enters the hash as
 its syntax tree with docstrings removed and without positions, so comments, docstrings and
 formatting do not change it and a comment does not rerun a long study.  Nothing is declared by
 hand: a new import is a new dependency.
@@ -99,7 +100,8 @@ def _absolute(node: ast.ImportFrom, importer: str | None, is_package: bool) -> s
 @lru_cache(maxsize=None)
 def imported_names(source: str, importer: str | None = None,
                    is_package: bool = False) -> frozenset[str]:
-    """Every name an import statement of ``source`` may load as a module.
+    """Every name an import statement of ``source`` may load as a module (not those under
+    ``if TYPE_CHECKING:``, which only name types for annotations).
 
     ``from a.b import c`` yields ``a.b`` and ``a.b.c`` (``c`` may be a submodule); names that are
     not modules are dropped by the caller when no source file exists for them.  Memoised on the
@@ -110,9 +112,26 @@ def imported_names(source: str, importer: str | None = None,
                            _names))
 
 
+def _type_checking(node: ast.AST) -> bool:
+    """An ``if TYPE_CHECKING:`` (or ``typing.TYPE_CHECKING``) block: never run."""
+    return isinstance(node, ast.If) and (
+        (isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING")
+        or (isinstance(node.test, ast.Attribute) and node.test.attr == "TYPE_CHECKING"))
+
+
+def _run_nodes(tree: ast.AST):
+    """Every node of ``tree`` but those only a type checker reads (an ``if TYPE_CHECKING:``
+    block's body; its ``else`` runs)."""
+    pending = [tree]
+    while pending:
+        node = pending.pop()
+        yield node
+        pending += node.orelse if _type_checking(node) else ast.iter_child_nodes(node)
+
+
 def _imported_names(source: str, importer: str | None, is_package: bool) -> set[str]:
     names = set()
-    for node in ast.walk(ast.parse(source)):
+    for node in _run_nodes(ast.parse(source)):
         if isinstance(node, ast.Import):
             names |= {alias.name for alias in node.names}
         elif isinstance(node, ast.ImportFrom):
