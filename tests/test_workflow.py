@@ -122,6 +122,17 @@ def test_two_runs_give_byte_identical_results(runs):
     assert first and shards and first == {k: v for k, v in second.items() if k not in shards}
 
 
+def test_jobs_load_the_heavy_libraries_only_where_their_work_needs_them(run_dir):
+    """pint (ROSS's) only in the job that runs ROSS, xarray's probe for it answered without it
+    (rotorvib.pipeline.pint_probe); SALib only where a Sobol study samples and analyses; pymoo
+    only where a genetic algorithm or NSGA-II runs: not in the jobs that read datasets, draw
+    them or state their claims."""
+    loaded = {package: {r["rule"] for r in job_records(run_dir) if package in r["packages"]}
+              for package in ("pint", "SALib", "pymoo")}
+    assert loaded == {"pint": {"b_ross"}, "SALib": {"b_uncertainty", "c_uncertainty"},
+                      "pymoo": {"b_ga", "b_pareto", "c_ga", "c_broadband", "c_discrepancies"}}
+
+
 def test_malformed_config_stops_before_any_job(run_dir, tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("paper_c:\n  rotor:\n    M: -5.0\n  ga:\n    popsize: 10\n")

@@ -22,6 +22,8 @@ import logging
 import os
 import sys
 
+from rotorvib.pipeline import pint_probe
+
 gc.disable()
 
 #: The last line of a finished job's log: the CPU seconds its process spent, user and system, its
@@ -45,7 +47,9 @@ def start(log: str) -> None:
     """End the job's start-up: the objects made so far frozen, the collector on again, and
     standard error (warnings, a traceback, the library's progress messages with their time:
     rotorvib.io.progress) written to the job's ``log`` file, line by line, ending, as the
-    process exits, with the CPU it spent (:data:`CPU_LINE`)."""
+    process exits, with the CPU it spent (:data:`CPU_LINE`).  xarray's probe for pint quantities
+    is answered without importing pint (:mod:`rotorvib.pipeline.pint_probe`)."""
+    pint_probe.skip()
     gc.freeze()
     gc.enable()
     sys.stderr = open(log, "w", buffering=1)

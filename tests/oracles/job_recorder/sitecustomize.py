@@ -2,8 +2,8 @@
 
 On the ``PYTHONPATH`` of a workflow test with ``ROTORVIB_JOB_RECORDS`` set, every Python process
 that ran a Snakemake script writes, when it exits, one JSON file: the rule, the job's input and
-output files, the ``rotorvib`` modules in ``sys.modules`` and whether Snakemake benchmarked the
-job.  This is the independent record
+output files, the ``rotorvib`` modules in ``sys.modules``, the top-level packages it loaded
+and whether Snakemake benchmarked the job.  This is the independent record
 against which the derived code fingerprints are tested: it comes from the interpreter, not from
 reading imports.
 """
@@ -23,6 +23,7 @@ def _record():
     outputs = sorted(str(f) for f in job.output)
     record = {"rule": job.rule, "output": outputs, "input": sorted(str(f) for f in job.input),
               "modules": sorted(m for m in sys.modules if m.split(".")[0] == "rotorvib"),
+              "packages": sorted({m.split(".")[0] for m in sys.modules}),
               "benchmarked": job.bench_iteration is not None}
     key = hashlib.sha256("\n".join(outputs).encode()).hexdigest()[:16]
     target = Path(os.environ["ROTORVIB_JOB_RECORDS"]) / f"{job.rule}-{key}.json"
