@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from rotorvib.models.balancer import engine, stability
+from rotorvib.models.balancer import engine, equations, stability
 from rotorvib.models.balancer.parameters import Dimensionless, SpeedProfile, rotating_parameters
 
 CASE = dict(mu=0.01, rho=1.0, zeta=0.05, beta=0.5, omega=2.0)
@@ -36,17 +36,17 @@ def test_symbolic_linearisation_matches_compiled_rhs(case):
 def test_the_disk_phase_cancels_from_the_rotating_frame_equations():
     """Lagrange's equations carry no sin or cos of the phase W tau, and equal the expressions
     straight from the energies (phase and all) at random states, parameters and times."""
-    phase = stability.OMEGA * stability.TAU
-    q, eqs = stability.rotating_lagrange_equations()
-    _, raw = stability.lagrange_expressions()
+    phase = equations.OMEGA * equations.TAU
+    q, eqs = equations.rotating_lagrange_equations()
+    _, raw = equations.lagrange_expressions()
     assert not any(e.has(sp.sin(phase)) or e.has(sp.cos(phase)) for e in eqs)
     rng = np.random.default_rng(2)
     for _ in range(3):
-        point = {sp.diff(f, stability.TAU, 2): rng.uniform(-1, 1) for f in q}
-        point.update({sp.diff(f, stability.TAU): rng.uniform(-1, 1) for f in q})
+        point = {sp.diff(f, equations.TAU, 2): rng.uniform(-1, 1) for f in q}
+        point.update({sp.diff(f, equations.TAU): rng.uniform(-1, 1) for f in q})
         values = {f: rng.uniform(-3, 3) for f in q}
-        params = dict(zip(stability.PARAMETERS, rng.uniform(0.05, 2.0, 5)))
-        params[stability.TAU] = rng.uniform(0, 10)
+        params = dict(zip(equations.PARAMETERS, rng.uniform(0.05, 2.0, 5)))
+        params[equations.TAU] = rng.uniform(0, 10)
 
         def at(e):
             return float(e.subs(point).subs(values).subs(params))
@@ -56,24 +56,24 @@ def test_the_disk_phase_cancels_from_the_rotating_frame_equations():
 
 
 def test_constant_term_changes_sign_at_rho_one_half():
-    c0 = sp.factor(stability.characteristic_polynomial().coeff_monomial(1))
-    assert sp.simplify(c0 - stability.OMEGA**8 * stability.MU**4 * (4 * stability.RHO**2 - 1)
-                       / (4 * stability.RHO**4)) == 0
-    values = [float(c0.subs({stability.MU: 0.01, stability.OMEGA: 2, stability.RHO: r}))
+    c0 = sp.factor(equations.characteristic_polynomial().coeff_monomial(1))
+    assert sp.simplify(c0 - equations.OMEGA**8 * equations.MU**4 * (4 * equations.RHO**2 - 1)
+                       / (4 * equations.RHO**4)) == 0
+    values = [float(c0.subs({equations.MU: 0.01, equations.OMEGA: 2, equations.RHO: r}))
               for r in (0.49, 0.51)]
     assert values[0] < 0 < values[1]
 
 
 def test_first_order_coefficient_changes_sign_at_omega_one():
-    c1 = stability.characteristic_polynomial().coeff_monomial(stability.LAMBDA)
-    W, B, MU = stability.OMEGA, stability.BETA, stability.MU
+    c1 = equations.characteristic_polynomial().coeff_monomial(equations.LAMBDA)
+    W, B, MU = equations.OMEGA, equations.BETA, equations.MU
     assert sp.simplify(c1 - 2 * B * MU**3 * W**4 * (W**2 - 1)) == 0
 
 
 def test_characteristic_polynomial_equals_numeric_eigenvalues():
-    poly = stability.characteristic_polynomial()
-    subs = {stability.MU: CASE["mu"], stability.RHO: CASE["rho"], stability.ZETA: CASE["zeta"],
-            stability.BETA: CASE["beta"], stability.OMEGA: CASE["omega"]}
+    poly = equations.characteristic_polynomial()
+    subs = {equations.MU: CASE["mu"], equations.RHO: CASE["rho"], equations.ZETA: CASE["zeta"],
+            equations.BETA: CASE["beta"], equations.OMEGA: CASE["omega"]}
     coeffs = [complex(c.subs(subs)) for c in poly.all_coeffs()]
     roots = np.roots(coeffs)
     eig = stability.eigenvalues(**CASE)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from rotorvib.models.balancer import stability
+from rotorvib.models.balancer import equations, stability
 from rotorvib.papers.b.boundaries import boundary_dataset, boundary_rows
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
 from rotorvib.papers.b.stability_maps import growth_rate, stability_dataset
@@ -60,9 +60,9 @@ def test_reduced_ball_equation_changes_sign_at_the_critical_speed():
     mu beta a' = -S a, S = K_ar K_rr^-1 K_ra; tr S = 2 Omega^4 mu^2 (1 - Omega^2) / D with
     D = (1 - Omega^2)^2 + 4 zeta^2 Omega^2 > 0: it vanishes at Omega = 1, the critical speed on
     the total-mass scale."""
-    M, C, K = stability.pencil_matrices()
+    M, C, K = equations.pencil_matrices()
     S = K[2:, :2] * K[:2, :2].inv() * K[:2, 2:]
-    mu, zeta, omega = stability.MU, stability.ZETA, stability.OMEGA
+    mu, zeta, omega = equations.MU, equations.ZETA, equations.OMEGA
     D = (1 - omega**2) ** 2 + 4 * zeta**2 * omega**2
     assert sp.simplify(S.trace() - 2 * omega**4 * mu**2 * (1 - omega**2) / D) == 0
 

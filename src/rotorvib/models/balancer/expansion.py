@@ -2,7 +2,10 @@
 (paper A): the ``J`` and quadratic tensor ``T`` that :mod:`rotorvib.methods.multiple_scales` needs.
 
 The derivatives are exact: taken symbolically (sympy) of Lagrange's equations
-``E = M(q) q'' - G(q, q')`` of :func:`rotorvib.models.balancer.stability.rotating_lagrange_equations`.  With
+``E = M(q) q'' - G(q, q')`` of :func:`rotorvib.models.balancer.equations.rotating_lagrange_equations`
+(:func:`~rotorvib.models.balancer.equations.taylor_derivatives`), evaluated through generated
+code (:func:`rotorvib.methods.codegen.cached_lambdify`: a process finds it cached and imports no
+sympy).  With
 ``a = M^-1 G`` the accelerations and ``delta`` the deviation of ``z = (q, q')``::
 
     a ~ M0^-1 [G1 delta + 1/2 G2(delta, delta)] - M0^-1 M1(delta q) M0^-1 G1 delta,
@@ -12,43 +15,23 @@ so ``T_a = M0^-1 G2 + B + B^T`` with ``B_imn = -(M0^-1)_ir (dM_rs/dz_m) (M0^-1 G
 
 from __future__ import annotations
 
-import sys
 from functools import lru_cache
 
 import numpy as np
-import sympy as sp
 
 from rotorvib.methods.codegen import cached_lambdify
-from rotorvib.models.balancer import stability
-from rotorvib.models.balancer.stability import PARAMETERS, TAU, rotating_lagrange_equations
-
-STATE = sp.symbols("u v a1 a2 up vp a1p a2p", real=True)
-
-
-@lru_cache(maxsize=1)
-def _derivatives():
-    """Symbolic ``(M, G1, G2, dM)`` (module docstring) in the parameters and the state."""
-    q, eqs = rotating_lagrange_equations()
-    z = STATE
-    acc = sp.symbols("udd vdd a1dd a2dd", real=True)
-    subs = {}
-    for qj, zq, zp, zd in zip(q, z[:4], z[4:], acc):
-        subs[sp.diff(qj, TAU, 2)] = zd
-        subs[sp.diff(qj, TAU)] = zp
-    plain = [e.subs(subs).subs(dict(zip(q, z[:4]))) for e in eqs]
-    M = sp.Matrix([[sp.diff(e, a) for a in acc] for e in plain])
-    G = sp.Matrix([-e.subs({a: 0 for a in acc}) for e in plain])
-    G1 = G.jacobian(z)
-    G2 = [[[sp.diff(G[i], z[m], z[k]) for k in range(8)] for m in range(8)] for i in range(4)]
-    dM = [[[sp.diff(M[r, s], z[m]) for m in range(8)] for s in range(4)] for r in range(4)]
-    return M, G1, G2, dM
+from rotorvib.models.balancer.stability import DERIVATION
 
 
 @lru_cache(maxsize=1)
 def _derivative_functions():
-    return tuple(cached_lambdify(f"taylor_{name}", PARAMETERS + STATE,
-                                 lambda i=i: _derivatives()[i],
-                                 modules=(sys.modules[__name__], stability))
+    def build(i):
+        from rotorvib.models.balancer import equations
+
+        return equations.PARAMETERS + equations.STATE, equations.taylor_derivatives()[i]
+
+    return tuple(cached_lambdify(f"taylor_{name}", lambda i=i: build(i),
+                                 sources=(__file__, *DERIVATION))
                  for i, name in enumerate(("M", "G1", "G2", "dM")))
 
 
