@@ -2,11 +2,12 @@
 (paper A): the ``J`` and quadratic tensor ``T`` that :mod:`rotorvib.methods.multiple_scales` needs.
 
 The derivatives are exact: taken symbolically (sympy) of Lagrange's equations
-``E = M(q) q'' - G(q, q')`` of :func:`rotorvib.models.balancer.equations.rotating_lagrange_equations`
+``E = M(q) q'' - G(q, q')`` of
+:func:`rotorvib.models.balancer.equations.rotating_lagrange_equations`
 (:func:`~rotorvib.models.balancer.equations.taylor_derivatives`), evaluated through generated
-code (:func:`rotorvib.methods.codegen.cached_lambdify`: a process finds it cached and imports no
-sympy).  With
-``a = M^-1 G`` the accelerations and ``delta`` the deviation of ``z = (q, q')``::
+code (:func:`rotorvib.models.balancer.stability.generated`: a process finds it cached and
+imports no sympy).  With ``a = M^-1 G`` the accelerations and ``delta`` the deviation of
+``z = (q, q')``::
 
     a ~ M0^-1 [G1 delta + 1/2 G2(delta, delta)] - M0^-1 M1(delta q) M0^-1 G1 delta,
 
@@ -19,19 +20,14 @@ from functools import lru_cache
 
 import numpy as np
 
-from rotorvib.methods.codegen import cached_lambdify
-from rotorvib.models.balancer.stability import DERIVATION
+from rotorvib.models.balancer.stability import generated
 
 
 @lru_cache(maxsize=1)
 def _derivative_functions():
-    def build(i):
-        from rotorvib.models.balancer import equations
-
-        return equations.PARAMETERS + equations.STATE, equations.taylor_derivatives()[i]
-
-    return tuple(cached_lambdify(f"taylor_{name}", lambda i=i: build(i),
-                                 sources=(__file__, *DERIVATION))
+    return tuple(generated(f"taylor_{name}", lambda eq, i=i: (eq.PARAMETERS + eq.STATE,
+                                                             eq.taylor_derivatives()[i]),
+                           beside=__file__)
                  for i, name in enumerate(("M", "G1", "G2", "dM")))
 
 

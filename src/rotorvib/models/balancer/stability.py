@@ -29,19 +29,21 @@ N_BALLS = 2
 DERIVATION = (Path(__file__).with_name("equations.py"), Path(__file__))
 
 
-def _generated(name: str, expressions):
-    """The cached numeric function ``name`` of ``expressions(equations)`` in the parameters
-    (:func:`cached_lambdify`, keyed on :data:`DERIVATION`, cached beside this module)."""
+def generated(name: str, derive, *, beside: str | Path = __file__):
+    """The numeric function ``name`` of ``(args, expressions) = derive(equations)``, generated
+    once and cached beside the module file ``beside`` (:func:`cached_lambdify`, keyed on it and
+    :data:`DERIVATION`): :mod:`equations` and sympy are imported only to derive it."""
     def build():
         from rotorvib.models.balancer import equations
 
-        return equations.PARAMETERS, expressions(equations)
-    return cached_lambdify(name, build, sources=DERIVATION[::-1])
+        return derive(equations)
+    return cached_lambdify(name, build, sources=tuple(dict.fromkeys((Path(beside), *DERIVATION))))
 
 
 @lru_cache(maxsize=1)
 def _numeric_pencil():
-    return tuple(_generated(f"pencil_{name}", lambda eq, i=i: list(eq.pencil_matrices()[i]))
+    return tuple(generated(f"pencil_{name}",
+                           lambda eq, i=i: (eq.PARAMETERS, list(eq.pencil_matrices()[i])))
                  for i, name in enumerate("MCK"))
 
 
@@ -97,8 +99,8 @@ def max_real_part(mu, rho, zeta, beta, omega) -> np.ndarray:
 
 @lru_cache(maxsize=1)
 def _coefficient_function():
-    return _generated("characteristic_coefficients",
-                      lambda eq: eq.characteristic_polynomial().all_coeffs())
+    return generated("characteristic_coefficients",
+                     lambda eq: (eq.PARAMETERS, eq.characteristic_polynomial().all_coeffs()))
 
 
 def characteristic_coefficients(mu, rho, zeta, beta, omega) -> np.ndarray:
