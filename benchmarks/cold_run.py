@@ -83,14 +83,19 @@ def rule_group(rule: str) -> str:
     return "figures" if rule.startswith("figures_") else rule.removesuffix("_shard")
 
 
+def commit_of(repository: Path, revision: str) -> str:
+    """The commit ``revision`` names in ``repository`` now."""
+    return subprocess.run(["git", "rev-parse", "--verify", f"{revision}^{{commit}}"],
+                          cwd=repository, check=True, capture_output=True,
+                          text=True).stdout.strip()
+
+
 def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
     """Clone ``repository`` at ``revision`` into a scratch folder, run ``snakemake -j<cores>``
     there and return the record: commit, date, cores, machine, wall and CPU seconds, and the
     CPU seconds of its jobs by :func:`rule_group` (``jobs_cpu_s``; ``jobs``: how many jobs
     recorded theirs)."""
-    commit = subprocess.run(["git", "rev-parse", "--verify", f"{revision}^{{commit}}"],
-                            cwd=repository, check=True, capture_output=True,
-                            text=True).stdout.strip()
+    commit = commit_of(repository, revision)
     with tempfile.TemporaryDirectory(prefix="rotorvib-cold-") as scratch:
         clone = Path(scratch) / "clone"
         subprocess.run(["git", "clone", "--quiet", "--no-checkout", str(repository), str(clone)],
@@ -172,7 +177,10 @@ def main(argv=None) -> None:
     if args.against:
         if args.rounds < 1:
             parser.error(f"--rounds: at least 1, not {args.rounds}")
-        records = side_by_side(lambda rev: cold_run(Path.cwd(), args.cores, rev),
+        # both revisions pinned to their commits now: a commit made while it runs (an hour for
+        # a few rounds) changes neither side
+        pinned = {rev: commit_of(Path.cwd(), rev) for rev in ("HEAD", args.against)}
+        records = side_by_side(lambda rev: cold_run(Path.cwd(), args.cores, pinned[rev]),
                                ("HEAD", args.against), args.rounds)
         for r in records:
             print(f"round {r['round']}, {r['revision']} ({r['commit'][:7]}): {r['wall_s']} s "

@@ -12,6 +12,7 @@ import pytest
 from conftest import ROOT
 
 sys.path.insert(0, str(ROOT))                 # the benchmarks are modules of the repository
+import benchmarks.cold_run as cold_run_module  # noqa: E402
 from benchmarks.cold_run import (  # noqa: E402
     JOB_HOOK,
     common_jobs_ratio,
@@ -60,6 +61,34 @@ def test_no_rounds_is_refused_before_any_run(capsys):
     with pytest.raises(SystemExit):
         main(["--against", "HEAD~1", "--rounds", "0"])
     assert "--rounds: at least 1, not 0" in capsys.readouterr().err
+
+
+def test_both_sides_stay_the_commits_they_were_at_the_start(tmp_path, monkeypatch, capsys):
+    """A commit made while the comparison runs (its rounds take an hour) changes neither side:
+    every round of HEAD runs the commit HEAD was when it began."""
+    def git(*args):
+        return subprocess.run(["git", *args], cwd=tmp_path, check=True, capture_output=True,
+                              text=True, env={"GIT_AUTHOR_NAME": "t", "GIT_AUTHOR_EMAIL": "t@t",
+                                              "GIT_COMMITTER_NAME": "t",
+                                              "GIT_COMMITTER_EMAIL": "t@t", "HOME": str(tmp_path)}
+                              ).stdout.strip()
+
+    git("init", "-q")
+    for message in ("old", "head"):
+        git("commit", "-q", "--allow-empty", "-m", message)
+    start = {"HEAD": git("rev-parse", "HEAD"), "HEAD~1": git("rev-parse", "HEAD~1")}
+    ran = []
+
+    def fake_cold_run(repository, cores, revision):
+        ran.append(revision)
+        git("commit", "-q", "--allow-empty", "-m", "made meanwhile")
+        return {"commit": revision, "cpu_s": 1.0, "wall_s": 1.0, "jobs": 0, "jobs_cpu_s": {}}
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(cold_run_module, "cold_run", fake_cold_run)
+    main(["--against", "HEAD~1", "--rounds", "2"])
+    assert ran == [start["HEAD"], start["HEAD~1"], start["HEAD~1"], start["HEAD"]]
+    assert f"round 2, HEAD ({start['HEAD'][:7]})" in capsys.readouterr().out
 
 
 def test_the_hook_records_a_jobs_rule_and_cpu_as_it_exits(tmp_path):

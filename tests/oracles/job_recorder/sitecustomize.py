@@ -31,7 +31,8 @@ def _record():
     keyed = getattr(sys.modules.get("rotorvib.methods.codegen"), "KEYED", ())
     record = {"rule": job.rule, "output": outputs, "input": sorted(str(f) for f in job.input),
               "modules": sorted({m for m in sys.modules if m.split(".")[0] == "rotorvib"}
-                                | {_module_name(Path(f)) for f in keyed}),
+                                | {_module_name(Path(f)) for f in keyed
+                                   if "rotorvib" in Path(f).parts}),
               "packages": sorted({m.split(".")[0] for m in sys.modules}),
               "benchmarked": job.bench_iteration is not None}
     key = hashlib.sha256("\n".join(outputs).encode()).hexdigest()[:16]
