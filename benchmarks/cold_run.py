@@ -32,13 +32,14 @@ import argparse
 import json
 import os
 import platform
-import resource
 import subprocess
 import sys
 import tempfile
 import time
 from datetime import datetime, timezone
 from pathlib import Path
+
+from benchmarks import children_cpu
 
 
 def cpu_model() -> str:
@@ -50,12 +51,6 @@ def cpu_model() -> str:
     except OSError:
         pass
     return platform.processor() or platform.machine()
-
-
-def children_cpu() -> float:
-    """User + system seconds of every child process waited for so far."""
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
 
 
 #: The ``sitecustomize`` of a measured run: every process that runs a Snakemake script job

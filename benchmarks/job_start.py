@@ -18,10 +18,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import subprocess
 import sys
 import tempfile
+
+from benchmarks import children_cpu
 
 IMPORTS = ("import rotorvib.models.balancer.simulate, rotorvib.io.datasets, "
            "rotorvib.io.plotting")
@@ -45,12 +46,11 @@ PAIRS = {
 def cpu_seconds(code: str, path: str) -> float:
     """User plus system CPU seconds of ``python -c code`` (and its threads), ``PATH`` in it a
     file name it may write."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    before = children_cpu()
     subprocess.run([sys.executable, "-c", f"PATH = {path!r}\n{code}"], check=True,
                    env={**os.environ,
                         "PYTHONPATH": os.pathsep.join(["src", os.environ.get("PYTHONPATH", "")])})
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return children_cpu() - before
 
 
 def main() -> None:

@@ -5,13 +5,14 @@ no case compiles it)."""
 
 from __future__ import annotations
 
-import resource
 import shutil
 import subprocess
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+
+from benchmarks import children_cpu
 
 REDUCED = ["config/config.yaml", "config/test/config.yaml"]
 
@@ -39,12 +40,9 @@ def run_reduced(folder: Path, name: str, options: list[str], shards: int = 1,
     config.write_text(f"results: {results}\npaper_b:\n  shards: {shards}\n")
     command = [str(Path(sys.executable).parent / "snakemake"), *options,
                "--configfile", *REDUCED, str(config)]
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
+    cpu, start = children_cpu(), time.perf_counter()
     done = subprocess.run(command, capture_output=True, text=True, env=env)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    wall, cpu = time.perf_counter() - start, children_cpu() - cpu
     if done.returncode:
         sys.exit(f"{' '.join(command)} failed:\n{done.stdout[-3000:]}{done.stderr[-3000:]}")
-    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     return Run(wall, cpu, done.stdout + done.stderr)
