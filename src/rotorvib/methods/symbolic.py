@@ -37,34 +37,40 @@ def lagrange_equations(T, V, coords, t, forces) -> list[sp.Expr]:
             for q, Q in zip(coords, forces)]
 
 
-def trig_normal_form(expr):
+def trig_normal_form(expr, of=sp.cos):
     """``expr`` expanded with every ``cos(x)**n`` (``n >= 2``) written as
-    ``(1 - sin(x)**2)**(n // 2) * cos(x)**(n % 2)``.
+    ``(1 - sin(x)**2)**(n // 2) * cos(x)**(n % 2)`` (with ``of=sp.sin``, the mirror image: every
+    ``sin(x)**n`` lowered through ``1 - cos(x)**2``).
 
     For a polynomial in the sines and cosines of independent arguments this is its remainder
     modulo the identities ``sin(x)**2 + cos(x)**2 = 1`` (each a Groebner basis element in its
     own two variables), a canonical form: it is 0 exactly when the polynomial vanishes
     identically.  A zero result is therefore a proof that ``expr`` is 0, at the cost of one
     expansion; a non-zero one proves nothing when the arguments are related."""
-    def is_cos_power(e):
-        return e.is_Pow and isinstance(e.base, sp.cos) and e.exp.is_Integer and e.exp >= 2
+    other = sp.sin if of is sp.cos else sp.cos
+
+    def is_power(e):
+        return e.is_Pow and isinstance(e.base, of) and e.exp.is_Integer and e.exp >= 2
 
     def lowered(e):
         n = int(e.exp)
-        return (1 - sp.sin(e.base.args[0]) ** 2) ** (n // 2) * e.base ** (n % 2)
+        return (1 - other(e.base.args[0]) ** 2) ** (n // 2) * e.base ** (n % 2)
 
-    return sp.expand(expr.replace(is_cos_power, lowered))
+    return sp.expand(expr.replace(is_power, lowered))
 
 
 def shortened(expr):
     """A non-zero leftover in a short form for a FAIL row to print: :func:`trig_normal_form`
     (the Pythagorean terms that cancel go), the common factors taken out, the products of sines
     and cosines contracted to sines and cosines of sums (``cos a cos b - sin a sin b ->
-    cos(a + b)``, sympy's ``fu.TR10i``) and the common factors taken out again.  Each step is an
-    identity, so the result equals ``expr`` (tested).  On the leftovers of papers B and C it
-    gives full ``simplify``'s forms at about a fiftieth of its time, and it also shortens the two
-    of over 300 operations that ``simplify`` was too slow for (printed rates in (7)-(8))."""
-    return sp.factor_terms(TR10i(sp.factor_terms(trig_normal_form(expr))))
+    cos(a + b)``, sympy's ``fu.TR10i``) and the common factors taken out again; of the forms
+    with cosine powers and with sine powers lowered, the one with fewer operations, then the
+    shorter text (``-cos(a)**2``, not ``sin(a)**2 - 1``).  Each step is an identity, so the result equals ``expr`` (tested).  On the
+    leftovers of papers B and C it gives full ``simplify``'s forms at about a fiftieth of its
+    time, and it also shortens the two of over 300 operations that ``simplify`` was too slow
+    for (printed rates in (7)-(8))."""
+    return min((sp.factor_terms(TR10i(sp.factor_terms(trig_normal_form(expr, of))))
+                for of in (sp.cos, sp.sin)), key=lambda e: (sp.count_ops(e), len(sp.sstr(e))))
 
 
 def _reduce(expr):
