@@ -6,6 +6,7 @@ what these functions return."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -105,6 +106,15 @@ def _click_text(page, text: str) -> None:
     assert changed, f"clicking {text!r} in the sidebar changed nothing"
 
 
+def _back_to_the_categories(page) -> None:
+    """Back to the sidebar's list of categories as a reader goes back, by its "Results" link
+    (shown once a category is open), without loading the report again."""
+    back = page.locator("nav a").filter(has_text=re.compile(r"^\s*Results\s*$"))
+    if back.count():
+        _click_changing(page, back.first, "document.querySelector('nav').innerHTML")
+    assert "Results" not in _sidebar_links(page), "the sidebar's Results link led nowhere"
+
+
 def _result_rows(page) -> list[str]:
     return page.eval_on_selector_all(
         "nav table tbody tr", "rows => rows.map(r => r.cells[0].innerText.trim())")
@@ -151,13 +161,9 @@ def every_view(browser, report: Path) -> tuple[list[str], list[View], dict[str, 
     categories = page.evaluate("Object.keys(categories)")
     views, lists = [], {}
     for category in categories:
-        page.goto(report.as_uri())
-        page.wait_for_selector("h1.title")
-        _click_text(page, category)
-        subcategories = [s for s in page.evaluate(f"Object.keys(categories[{category!r}])")]
+        subcategories = page.evaluate(f"Object.keys(categories[{category!r}])")
         for sub in subcategories:
-            page.goto(report.as_uri())
-            page.wait_for_selector("h1.title")
+            _back_to_the_categories(page)
             _click_text(page, category)
             if len(subcategories) > 1:
                 _click_text(page, sub)
