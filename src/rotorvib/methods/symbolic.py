@@ -65,10 +65,10 @@ def shortened(expr):
     and cosines contracted to sines and cosines of sums (``cos a cos b - sin a sin b ->
     cos(a + b)``, sympy's ``fu.TR10i``) and the common factors taken out again; of the forms
     with cosine powers and with sine powers lowered, the one with fewer operations, then the
-    shorter text (``-cos(a)**2``, not ``sin(a)**2 - 1``).  Each step is an identity, so the result equals ``expr`` (tested).  On the
-    leftovers of papers B and C it gives full ``simplify``'s forms at about a fiftieth of its
-    time, and it also shortens the two of over 300 operations that ``simplify`` was too slow
-    for (printed rates in (7)-(8))."""
+    shorter text (``-cos(a)**2``, not ``sin(a)**2 - 1``).  Each step is an identity, so the
+    result equals ``expr`` (tested).  On the leftovers of papers B and C it gives full
+    ``simplify``'s forms at about a fiftieth of its time, and it also shortens the two of over
+    300 operations that ``simplify`` was too slow for (printed rates in (7)-(8))."""
     return min((sp.factor_terms(TR10i(sp.factor_terms(trig_normal_form(expr, of))))
                 for of in (sp.cos, sp.sin)), key=lambda e: (sp.count_ops(e), len(sp.sstr(e))))
 
