@@ -81,6 +81,8 @@ CHANGE_TIMEOUT = 10_000
 #: The src of what the content area shows: an image, or an HTML page in a frame (None: neither)
 _CONTENT = ("document.querySelector('iframe, div.p-3 > img') && "
             "document.querySelector('iframe, div.p-3 > img').getAttribute('src')")
+#: What the sidebar shows (a click in it must change this)
+_SIDEBAR = "document.querySelector('nav').innerHTML"
 
 
 def _click_changing(page, target, state: str) -> bool:
@@ -101,8 +103,7 @@ def _click_changing(page, target, state: str) -> bool:
 
 def _click_text(page, text: str) -> None:
     """Click the sidebar link ``text``: the sidebar must change."""
-    changed = _click_changing(page, page.locator("nav a", has_text=text).first,
-                              "document.querySelector('nav').innerHTML")
+    changed = _click_changing(page, page.locator("nav a", has_text=text).first, _SIDEBAR)
     assert changed, f"clicking {text!r} in the sidebar changed nothing"
 
 
@@ -111,7 +112,7 @@ def _back_to_the_categories(page) -> None:
     (shown once a category is open), without loading the report again."""
     back = page.locator("nav a").filter(has_text=re.compile(r"^\s*Results\s*$"))
     if back.count():
-        _click_changing(page, back.first, "document.querySelector('nav').innerHTML")
+        _click_changing(page, back.first, _SIDEBAR)
     assert "Results" not in _sidebar_links(page), "the sidebar's Results link led nowhere"
 
 
