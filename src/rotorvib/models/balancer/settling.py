@@ -1,13 +1,14 @@
 """Stopping a run once its answer is known: a bound on the whirl radius and the bearing force
 for the rest of a run at constant speed.
 
-After the run-up the balancer is autonomous in the frame turning with the disk.  Near the
-balanced state ``q* = (0, 0, a*, -a*)`` (eq. 33; or its mirror image) the deviation ``dq`` of the
-rotating-frame state ``[u, v, a1, a2, u', v', a1', a2']`` (paper A's units: lengths in ``R``, time
-``tau = w_n t``) obeys ``dq' = J dq``, ``J`` the linearisation (:mod:`certificates`).  With
-``J = V diag(lambda) V^-1`` and modal amplitudes ``c = V^-1 dq(tau)``, every later state is
-``dq(tau') = sum_k c_k e^{lambda_k (tau' - tau)} v_k``; when no ``Re lambda_k`` is positive,
-``|e^{lambda_k s}| <= 1`` for ``s >= 0`` and the triangle inequality bounds, for all later times,
+After the run-up the balancer is autonomous in the frame turning with the disk.  Near a rest
+point ``q_e = (u_e, v_e, a_1e, a_2e, 0, 0, 0, 0)`` of that frame (or its mirror image, the balls
+swapped) the deviation ``dq`` of the rotating-frame state ``[u, v, a1, a2, u', v', a1', a2']``
+(paper A's units: lengths in ``R``, time ``tau = w_n t``) obeys ``dq' = J dq``, ``J`` the
+linearisation (:mod:`certificates`).  With ``J = V diag(lambda) V^-1`` and modal amplitudes
+``c = V^-1 dq(tau)``, every later state is ``dq(tau') = sum_k c_k e^{lambda_k (tau' - tau)} v_k``;
+when no ``Re lambda_k`` is positive, ``|e^{lambda_k s}| <= 1`` for ``s >= 0`` and the triangle
+inequality bounds, for all later times,
 
 ::
 
@@ -16,11 +17,13 @@ rotating-frame state ``[u, v, a1, a2, u', v', a1', a2']`` (paper A's units: leng
                              <=  sum_k |c_k| (k R |v_k,u + i v_k,v|
                                   + c R w_n |v_k,u' + i v_k,v' + i W (v_k,u + i v_k,v)|) =: B_F,
 
-``z = x + i y`` the centre in the fixed frame, ``W = Omega / w_n``.  A run may stop once the
-balance time, the envelope time and the force decay time are settled (the analysers' flags) and
-``B_r <= margin r_threshold``, ``B_F <= margin f_threshold`` and ``B_F`` is below the force
-maximum: no later sample could move any metric.  ``margin < 1`` leaves room for the nonlinear
-terms the linearisation drops (second order in ``dq``).
+``z = x + i y`` the centre in the fixed frame, ``W = Omega / w_n``.  The rest point is the
+balanced state ``q* = (0, 0, a*, -a*, ...)`` (eq. 33) where the balls can balance the disk
+(bound 34).  A run may stop once the balance time, the envelope time and the force decay time
+are settled (the analysers' flags) and ``B_r <= margin r_threshold``, ``B_F <= margin
+f_threshold`` and ``B_F`` is below the force maximum: no later sample could move any metric.
+``margin < 1`` leaves room for the nonlinear terms the linearisation drops (second order in
+``dq``).
 
 At the existence bound (34) the balls meet at ``a* = pi`` and ``J`` has a neutral mode
 (``|Re lambda| <= neutral``): the balls' symmetric separation, which moves ``r`` only at second
@@ -30,10 +33,18 @@ with ``U = M eps + m R sum_i e^{i a_i}`` (rotating frame, ``W_d`` the disk speed
 of ``(u, v)`` before the projection and added on its own: ``r_s = |z_s|``, ``F_s = (k + c W_d)
 r_s``.  This assumes the separation does not grow, which holds on the centre manifold above the
 critical speed and is checked by computation (identical metrics with and without stopping: the
-tests and ``python -m benchmarks.balancer --stop``).  A mode that is neutral and
-moves ``r`` at first order, an unstable balanced state, no balanced state (bound 34), a ball
-count other than two or a non-constant speed (the rotating-frame form, the run-up itself): no
-certificate, the run goes on to ``t_end`` as before.
+tests and ``python -m benchmarks.balancer --stop``).
+
+Beyond the bound (``2 m R < M eps``) there is no balanced state: the balls gather at one angle
+``a_e`` and the residual unbalance whirls the centre at ``z_s`` of that angle
+(:func:`~rotorvib.models.balancer.certificates.residual_whirl`).  The rest point is then
+``(z_s / R, a_e, a_e, 0, ...)``, and the bounds take the quasi-static whirl out in the same way:
+the balls' separation decays slowly as ``2 m R`` nears ``M eps`` and moves ``r`` at second
+order only, through ``z_s``.  So a run stops only where its residual whirl is below ``margin
+r_threshold``; one that never balances goes on.  A mode that is neutral and moves ``r`` at first
+order, a rest point that does not decay, a ball count other than two or a non-constant speed
+(the rotating-frame form, the run-up itself): no certificate, the run goes on to ``t_end`` as
+before.
 """
 
 from __future__ import annotations
@@ -46,12 +57,12 @@ from numba import njit
 from rotorvib.models.balancer.analysers import answers_settled, force_maximum
 from rotorvib.models.balancer.kinematics import disk_kinematics
 
-# layout of a certificate row (one per run): scalars, then the modal weights of B_r and B_F and
-# the real and imaginary parts of V^-1 (row-major)
-(ENABLED, T_FROM, W_N, ALPHA, QUASI_STATIC, GAIN_RE, GAIN_IM, FORCE_FACTOR, UNBALANCE,
- BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS) = range(13)
-WEIGHT_R, WEIGHT_F, VINV_RE, VINV_IM = 13, 21, 29, 93
-SIZE = 157
+# layout of a certificate row (one per run): scalars (A1, A2: the ball angles of the rest point),
+# then the modal weights of B_r and B_F and the real and imaginary parts of V^-1 (row-major)
+(ENABLED, T_FROM, W_N, A1, A2, QUASI_STATIC, GAIN_RE, GAIN_IM, FORCE_FACTOR, UNBALANCE,
+ BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS) = range(14)
+WEIGHT_R, WEIGHT_F, VINV_RE, VINV_IM = 14, 22, 30, 94
+SIZE = 158
 
 @dataclass(frozen=True)
 class StopRule:
@@ -84,8 +95,9 @@ def _wrap(a):
 @njit(cache=True, error_model="numpy")
 def bounds(S, y, phi, phid):
     """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
-    angle ``phi`` and rate ``phid``, measured from the nearer of the two balanced states."""
-    R, wn, alpha = S[RADIUS], S[W_N], S[ALPHA]
+    angle ``phi`` and rate ``phid``, measured from the rest point of ``S`` or its mirror image
+    (the balls swapped), whichever is nearer."""
+    R, wn, a1, a2 = S[RADIUS], S[W_N], S[A1], S[A2]
     co, si = np.cos(phi), np.sin(phi)
     dq = np.empty(8)
     dq[0] = (y[0] * co + y[1] * si) / R                  # (x + i y) e^{-i Phi} / R
@@ -94,8 +106,8 @@ def bounds(S, y, phi, phid):
     b = y[5] - phid * y[0]
     dq[4] = (a * co + b * si) / (R * wn)
     dq[5] = (b * co - a * si) / (R * wn)
-    d1, d2 = _wrap(y[2] - alpha), _wrap(y[3] + alpha)
-    m1, m2 = _wrap(y[3] - alpha), _wrap(y[2] + alpha)    # mirror image: ball 2 at +alpha
+    d1, d2 = _wrap(y[2] - a1), _wrap(y[3] - a2)
+    m1, m2 = _wrap(y[3] - a1), _wrap(y[2] - a2)          # mirror image: the balls swapped
     if d1 * d1 + d2 * d2 <= m1 * m1 + m2 * m2:
         dq[2], dq[3], dq[6], dq[7] = d1, d2, y[6] / wn, y[7] / wn
     else:
