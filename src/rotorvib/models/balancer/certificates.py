@@ -55,21 +55,22 @@ def _jacobians(groups, states):
     return out
 
 
-def residual_whirl(p_rot: np.ndarray) -> np.ndarray:
-    """The rest point of the rotating form (rows of ``engine.P_ROT``, two balls, constant speed
-    ``W``) where a residual unbalance whirls the centre beyond the existence bound (``2 rho <
-    1``), one state row per row.  At rest the rotor equations give the whirl ``w = u + i v =
-    g (1/rho + 2 e^{i a})``, ``g = mu W^2 / (1 - W^2 + 2 i zeta W)``, for both balls at ``a``, and
-    a ball rests where the whirl pulls it along the race no more, ``Im(w e^{-i a}) = 0``:
-    ``sin(a - arg g) = 2 rho sin(arg g)``.  Of its two roots this is ``a = arg g + arcsin(2 rho
-    sin(arg g))``, the balls on the side the centre whirls to, where the field pushes them
-    outwards (opposite the unbalance above the critical speed, beside it below); at the other
-    root they would sit on the inner side, a rest point no ball returns to."""
-    p_rot = np.atleast_2d(p_rot)
-    mu, rho, zeta, W = p_rot[:, 0], p_rot[:, 1], p_rot[:, 2], p_rot[:, 5]
+def residual_whirl(mu, rho, zeta, W, n=2) -> np.ndarray:
+    """The rest point of the rotating form where a residual unbalance whirls the centre beyond
+    the existence bound (``n rho < 1``), one state row per entry of paper A's groups ``mu, rho,
+    zeta`` and the constant speed ``W`` (broadcast together; ``n`` balls, state rows of two).
+    At rest the rotor equations give the whirl ``w = u + i v = g (1/rho + n e^{i a})``, ``g =
+    mu W^2 / (1 - W^2 + 2 i zeta W)``, for all balls at ``a``, and a ball rests where the whirl
+    pulls it along the race no more, ``Im(w e^{-i a}) = 0``: ``sin(a - arg g) = n rho
+    sin(arg g)``.  Of its two roots this is ``a = arg g + arcsin(n rho sin(arg g))``, the balls
+    on the side the centre whirls to, where the field pushes them outwards (opposite the
+    unbalance above the critical speed, beside it below); at the other root they would sit on
+    the inner side, a rest point no ball returns to."""
+    mu, rho, zeta, W = np.broadcast_arrays(*(np.asarray(v, float).ravel() for v in
+                                             (mu, rho, zeta, W)))
     g = mu * W**2 / (1 - W**2 + 2j * zeta * W)
-    a = np.angle(g) + np.arcsin(2 * rho * np.sin(np.angle(g)))
-    w = g * (1 / rho + 2 * np.exp(1j * a))
+    a = np.angle(g) + np.arcsin(n * rho * np.sin(np.angle(g)))
+    w = g * (1 / rho + n * np.exp(1j * a))
     return np.column_stack([w.real, w.imag, a, a, np.zeros((len(a), 4))])
 
 
@@ -98,8 +99,8 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     j = np.flatnonzero(two & ~ok)
     if j.size:
         groups = _rotating_rows(unique[j], W[j])
-        rows[j] = _rest_rows(unique[j], groups, W[j], residual_whirl(groups), rule,
-                             quasi_static=True)
+        rest = residual_whirl(*groups[:, :3].T, W[j])
+        rows[j] = _rest_rows(unique[j], groups, W[j], rest, rule, quasi_static=True)
     rows[:, T_FROM] = np.where(profile == CONSTANT, 0.0, t_ramp)   # constant speed from there
     rows[:, W_N] = wn
     gain = omega**2 / (k - mt * omega**2 + 1j * c * omega)

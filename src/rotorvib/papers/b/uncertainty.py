@@ -37,6 +37,8 @@ from rotorvib.comparison import MATCH_TOL, Margin, Reproduced, within_band
 from rotorvib.io.coords import pick
 from rotorvib.methods.bands import band_statement
 from rotorvib.methods.sensitivity import problem, sample, study_dataset
+from rotorvib.models.balancer import certificates
+from rotorvib.models.balancer.parameters import total_mass_groups
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import LazyInputs, Setup, dataset_attrs
 
@@ -87,17 +89,21 @@ def calibrated_band(forces: xr.Dataset, printed, *, kinematics: str,
 
 
 def residual_whirl(*, M: float, n: int, mass, eps_bar, R, k, zeta: float, speed: float):
-    """Steady whirl radius (m) left when the balls cannot cancel the unbalance.  Eq. (33) has no
-    balanced state when n m R < M eps: then the balls gather opposite the mass centre and the
-    residual eccentricity of the whole rotor is e = (M eps_bar R - n m R) / (M + n m) (0 when
-    the balls suffice); a Jeffcott rotor of mass M + n m on the support (k, c = 2 zeta sqrt(M k))
-    whirls at e w^2 / sqrt((w_n^2 - w^2)^2 + (c w / (M + n m))^2), w_n^2 = k / (M + n m).
-    Arguments broadcast."""
-    mass, eps_bar, R, k = (np.asarray(v, float) for v in (mass, eps_bar, R, k))
-    total = M + n * mass
-    e = np.maximum(M * eps_bar * R - n * mass * R, 0.0) / total
-    c = 2 * zeta * np.sqrt(M * k)
-    return e * speed**2 / np.hypot(k / total - speed**2, c * speed / total)
+    """Steady whirl radius (m) left when the balls cannot cancel the unbalance: eq. (33) has no
+    balanced state when n m R < M eps, and the balls gather at one angle, nearly opposite the
+    mass centre, the centre whirling with the unbalance they leave (the rest point of
+    :func:`rotorvib.models.balancer.certificates.residual_whirl`, support damping ``c = 2 zeta
+    sqrt(M k)``); 0 where the balls suffice.  Arguments broadcast."""
+    mass, eps_bar, R, k = np.broadcast_arrays(*(np.asarray(v, float) for v in
+                                               (mass, eps_bar, R, k)))
+    mu, rho, zeta_t, _ = total_mass_groups(M, mass, R, eps_bar * R, k, 2 * zeta * np.sqrt(M * k),
+                                           0.0, n)
+    beyond = n * rho < 1
+    W = speed / np.sqrt(k / (M + n * mass))
+    w = certificates.residual_whirl(mu[beyond], rho[beyond], zeta_t[beyond], W[beyond], n)
+    r = np.zeros(mass.shape)
+    r[beyond] = R[beyond] * np.hypot(w[:, 0], w[:, 1])
+    return r
 
 
 def balances_in_closed_form(ds: xr.Dataset, x, *, mass_tolerance=None, eps_offsets=None):
