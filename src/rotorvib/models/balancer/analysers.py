@@ -81,6 +81,13 @@ def answers_settled(acc):
 
 
 @njit(cache=True, error_model="numpy")
+def answers_undefined(acc):
+    """Balance time, envelope time and force decay time all undefined (NaN) unless a later
+    sample falls below its threshold: the last sample is above both."""
+    return acc[_BAL] == 0.0 and acc[_ENV] == 0.0 and acc[_F_DONE] == 0.0
+
+
+@njit(cache=True, error_model="numpy")
 def force_maximum(acc):
     return acc[_F_MAX]
 

@@ -22,8 +22,8 @@ from rotorvib.models.balancer.parameters import (SpeedProfile, rotating_paramete
                                                  total_mass_groups)
 from rotorvib.models.balancer.settling import (
     A1, A2, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
-    QUASI_STATIC, RADIUS, SIZE, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N, WEIGHT_F, WEIGHT_R,
-    StopRule)
+    QUASI_STATIC, R_MIN, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
+    WEIGHT_F, WEIGHT_R, WEIGHT_V, StopRule)
 
 STEP = 1e-3
 
@@ -106,7 +106,9 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     gain = omega**2 / (k - mt * omega**2 + 1j * c * omega)
     rows[:, GAIN_RE], rows[:, GAIN_IM], rows[:, FORCE_FACTOR] = gain.real, gain.imag, k + c * omega
     rows[:, UNBALANCE], rows[:, BALL_MOMENT] = M * eps, m * R
-    rows[:, MARGIN], rows[:, RADIUS] = rule.margin, R
+    rows[:, MARGIN], rows[:, RADIUS], rows[:, STIFFNESS] = rule.margin, R, k
+    # the smallest quasi-static whirl, of the balls gathered against the unbalance
+    rows[j, R_MIN] = np.abs(gain[j]) * (M[j] * eps[j] - n[j] * m[j] * R[j])
     rows[:, CHECK_EVERY] = np.where(rows[:, ENABLED] > 0, max(1, round(rule.check_dt / sample_dt)),
                                     np.inf)
     return rows[inverse.ravel()]
@@ -154,6 +156,8 @@ def _modal_rows(J, R, k, c, wn, W, rule: StopRule, *, quasi_static: bool) -> np.
     rows[u, WEIGHT_F:WEIGHT_F + 8] = np.where(
         neutral[u], 0.0, R[u, None] * (k[u, None] * np.abs(whirl[u])
                                        + c[u, None] * wn[u, None] * np.abs(rate[u])))
+    rows[u, WEIGHT_V:WEIGHT_V + 8] = np.where(
+        neutral[u], 0.0, R[u, None] * c[u, None] * wn[u, None] * np.abs(V[u, 4] + 1j * V[u, 5]))
     rows[u, VINV_RE:VINV_RE + 64] = Vinv.real.reshape(u.size, 64)
     rows[u, VINV_IM:VINV_IM + 64] = Vinv.imag.reshape(u.size, 64)
     rows[u, QUASI_STATIC] = quasi_static | neutral[u].any(axis=1)

@@ -40,11 +40,23 @@ Beyond the bound (``2 m R < M eps``) there is no balanced state: the balls gathe
 (:func:`~rotorvib.models.balancer.certificates.residual_whirl`).  The rest point is then
 ``(z_s / R, a_e, a_e, 0, ...)``, and the bounds take the quasi-static whirl out in the same way:
 the balls' separation decays slowly as ``2 m R`` nears ``M eps`` and moves ``r`` at second
-order only, through ``z_s``.  So a run stops only where its residual whirl is below ``margin
-r_threshold``; one that never balances goes on.  A mode that is neutral and moves ``r`` at first
-order, a rest point that does not decay, a ball count other than two or a non-constant speed
-(the rotating-frame form, the run-up itself): no certificate, the run goes on to ``t_end`` as
-before.
+order only, through ``z_s``.  A run that balances stops as above.  One whose residual whirl
+stays above the thresholds never balances, and stops once that is known: the balls' unbalance
+is at least ``U_min = M eps - n m R`` at any angles, so that for all later times
+
+::
+
+    r >= r_min - sum_k |c_k| R |v_k,u + i v_k,v|                                      =: L_r,
+    F = k r + c r' >= k L_r - c R w_n sum_k |c_k| |v_k,u' + i v_k,v'|                   =: L_F,
+
+``r_min = |z_s(U_min)|`` (``r' = R d|u + i v|/dt`` is at most the rotating-frame speed), and the
+run may stop once the balance, envelope and force flags all say "not yet" (the last sample is
+above both thresholds), ``margin L_r >= r_threshold``, ``margin L_F >= f_threshold`` and ``B_F``
+is below the force maximum: every metric stays NaN, or at its value.
+
+A mode that is neutral and moves ``r`` at first order, a rest point that does not decay, a
+ball count other than two or a non-constant speed (the rotating-frame form, the run-up
+itself): no certificate, the run goes on to ``t_end`` as before.
 """
 
 from __future__ import annotations
@@ -54,15 +66,16 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from rotorvib.models.balancer.analysers import answers_settled, force_maximum
+from rotorvib.models.balancer.analysers import answers_settled, answers_undefined, force_maximum
 from rotorvib.models.balancer.kinematics import disk_kinematics
 
-# layout of a certificate row (one per run): scalars (A1, A2: the ball angles of the rest point),
-# then the modal weights of B_r and B_F and the real and imaginary parts of V^-1 (row-major)
+# layout of a certificate row (one per run): scalars (A1, A2: the ball angles of the rest point;
+# R_MIN: r_min of the residual whirl, 0 at a balanced state), then the modal weights of B_r, B_F
+# and L_F and the real and imaginary parts of V^-1 (row-major)
 (ENABLED, T_FROM, W_N, A1, A2, QUASI_STATIC, GAIN_RE, GAIN_IM, FORCE_FACTOR, UNBALANCE,
- BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS) = range(14)
-WEIGHT_R, WEIGHT_F, VINV_RE, VINV_IM = 14, 22, 30, 94
-SIZE = 158
+ BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS, STIFFNESS, R_MIN) = range(16)
+WEIGHT_R, WEIGHT_F, WEIGHT_V, VINV_RE, VINV_IM = 16, 24, 32, 40, 104
+SIZE = 168
 
 @dataclass(frozen=True)
 class StopRule:
@@ -93,10 +106,11 @@ def _wrap(a):
 
 
 @njit(cache=True, error_model="numpy")
-def bounds(S, y, phi, phid):
-    """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
-    angle ``phi`` and rate ``phid``, measured from the rest point of ``S`` or its mirror image
-    (the balls swapped), whichever is nearer."""
+def _amplitudes(S, y, phi, phid):
+    """The modal amplitudes ``|c_k|`` of the fixed-frame state ``y`` (two balls) at disk angle
+    ``phi`` and rate ``phid``, measured from the rest point of ``S`` or its mirror image (the
+    balls swapped), whichever is nearer, and the quasi-static whirl radius ``r_s`` (0 unless
+    ``S`` takes it out)."""
     R, wn, a1, a2 = S[RADIUS], S[W_N], S[A1], S[A2]
     co, si = np.cos(phi), np.sin(phi)
     dq = np.empty(8)
@@ -123,30 +137,60 @@ def bounds(S, y, phi, phid):
         dq[0] -= zr
         dq[1] -= zi
         r_s = R * np.sqrt(zr * zr + zi * zi)
-    b_r = r_s
-    b_f = S[FORCE_FACTOR] * r_s
+    amplitudes = np.empty(8)
     for k in range(8):
         cr = 0.0
         ci = 0.0
         for j in range(8):
             cr += S[VINV_RE + 8 * k + j] * dq[j]
             ci += S[VINV_IM + 8 * k + j] * dq[j]
-        amplitude = np.sqrt(cr * cr + ci * ci)
-        b_r += amplitude * S[WEIGHT_R + k]
-        b_f += amplitude * S[WEIGHT_F + k]
+        amplitudes[k] = np.sqrt(cr * cr + ci * ci)
+    return amplitudes, r_s
+
+
+@njit(cache=True, error_model="numpy")
+def bounds(S, y, phi, phid):
+    """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
+    angle ``phi`` and rate ``phid`` (:func:`_amplitudes`)."""
+    amplitudes, r_s = _amplitudes(S, y, phi, phid)
+    b_r = r_s
+    b_f = S[FORCE_FACTOR] * r_s
+    for k in range(8):
+        b_r += amplitudes[k] * S[WEIGHT_R + k]
+        b_f += amplitudes[k] * S[WEIGHT_F + k]
     return b_r, b_f
+
+
+@njit(cache=True, error_model="numpy")
+def lower_bounds(S, y, phi, phid):
+    """``(L_r, L_F)`` of the module docstring for the state ``y`` (as :func:`bounds`)."""
+    amplitudes, _ = _amplitudes(S, y, phi, phid)
+    l_r = S[R_MIN]
+    rate = 0.0
+    for k in range(8):
+        l_r -= amplitudes[k] * S[WEIGHT_R + k]
+        rate += amplitudes[k] * S[WEIGHT_V + k]
+    return l_r, S[STIFFNESS] * l_r - rate
 
 
 @njit(cache=True, error_model="numpy")
 def settled(S, p, acc, t, y, r_threshold, f_threshold):
     """True when the run at ``(t, y)`` (FIXED form, parameters ``p``, analyser state ``acc``)
-    may stop: its metrics are settled and the bounds of the module docstring hold."""
-    if S[ENABLED] == 0.0 or t < S[T_FROM] or not answers_settled(acc):
+    may stop: its metrics are settled and the bounds of the module docstring hold, or it is
+    above both thresholds and the lower bounds keep it there."""
+    if S[ENABLED] == 0.0 or t < S[T_FROM]:
+        return False
+    balanced = answers_settled(acc)
+    if not (balanced or (S[R_MIN] > 0.0 and answers_undefined(acc))):
         return False
     phi, phid, _ = disk_kinematics(t, p)
     b_r, b_f = bounds(S, y, phi, phid)
-    return (b_r <= S[MARGIN] * r_threshold and b_f <= S[MARGIN] * f_threshold
-            and b_f < force_maximum(acc))
+    if b_f >= force_maximum(acc):
+        return False
+    if balanced:
+        return b_r <= S[MARGIN] * r_threshold and b_f <= S[MARGIN] * f_threshold
+    l_r, l_f = lower_bounds(S, y, phi, phid)
+    return S[MARGIN] * l_r >= r_threshold and S[MARGIN] * l_f >= f_threshold
 
 
 def disabled() -> np.ndarray:
