@@ -104,6 +104,20 @@ def _rotating(b, omega):
     return _rotating_rows(p[None], np.array([omega / np.sqrt(b.k / (b.M + b.n * b.m))]))[0]
 
 
+def _at_rest(b, profile, t):
+    """Machine ``b`` at its residual whirl at time ``t`` of ``profile`` (constant speed by
+    then): the rotating-form rest point, the fixed-frame state there and the disk's angle and
+    rate."""
+    p = _rotating(b, profile.omega)
+    rest = residual_whirl(*p[:3], p[5])[0]
+    phi, phid, _ = disk_kinematics(t, fixed_parameters(b, profile))
+    y = fixed_state(2, r0=0.0, theta0=0.0, phi0=rest[2:4])
+    turn = np.array([[np.cos(phi), -np.sin(phi)], [np.sin(phi), np.cos(phi)]])
+    y[0:2] = b.R * turn @ rest[0:2]
+    y[4:6] = phid * np.array([-y[1], y[0]])                 # whirling with the disk
+    return rest, y, phi, phid
+
+
 def test_the_residual_whirl_is_a_rest_point_of_the_compiled_form():
     """Beyond the existence bound, over machines and speeds far apart: the residual whirl makes
     the compiled rotating form's right-hand side vanish to round-off, with both balls at one
@@ -131,8 +145,7 @@ def test_a_run_beyond_the_bound_settles_at_the_certified_residual_whirl(kinemati
     profile = SpeedProfile(200.0, "runup", 0.5, kinematics)
     S = certificate(b, profile)
     assert S[settling.ENABLED] == 1.0 and S[settling.QUASI_STATIC] == 1.0
-    p = _rotating(b, 200.0)
-    rest = residual_whirl(*p[:3], p[5])[0]
+    rest, y, phi, phid = _at_rest(b, profile, 200.0)
     assert rest[2] == S[settling.A1] == S[settling.A2]
     r_e = b.R * np.hypot(rest[0], rest[1])
     assert 2e-5 < r_e < 3e-5
@@ -140,11 +153,6 @@ def test_a_run_beyond_the_bound_settles_at_the_certified_residual_whirl(kinemati
                   rtol=1e-10, atol=1e-13, sample_dt=0.01)
     assert tr.r[-1] == pytest.approx(r_e, rel=1e-4)
     assert np.abs(settling._wrap(tr.y[-1, 2:4] - rest[2])).max() < 1e-3
-    phi, phid, _ = disk_kinematics(200.0, fixed_parameters(b, profile))
-    y = fixed_state(2, r0=0.0, theta0=0.0, phi0=rest[2:4])
-    turn = np.array([[np.cos(phi), -np.sin(phi)], [np.sin(phi), np.cos(phi)]])
-    y[0:2] = b.R * turn @ rest[0:2]
-    y[4:6] = phid * np.array([-y[1], y[0]])                 # whirling with the disk
     b_r, b_f = settling.bounds(S, y, phi, phid)
     assert b_r == pytest.approx(r_e, rel=1e-9)
     assert b_f == pytest.approx((b.k + b.c * 200.0) * r_e, rel=1e-9)
@@ -230,7 +238,10 @@ def test_a_run_that_never_balances_stays_above_its_lower_bounds(kappa, beta, kin
     profile = SpeedProfile(200.0, "runup", 0.5, kinematics)
     p = fixed_parameters(b, profile)
     S = certificate(b, profile)
-    assert S[settling.R_MIN] > 2e-4
+    # at its rest point: r_min, the whirl of the least unbalance, just below the whirl there
+    rest, y, phi, phid = _at_rest(b, profile, 20.0)
+    r_min = settling.lower_bounds(S, y, phi, phid)[0]
+    assert 2e-4 < r_min < b.R * np.hypot(rest[0], rest[1]) < r_min * (1 + 1e-3)
     tr = simulate(b, profile, np.radians(phi0), 20.0, store=True, method="dop853", rtol=1e-9,
                   atol=1e-12)
     force = tr.bearing_force(b.k, b.c)

@@ -22,7 +22,7 @@ from rotorvib.models.balancer.parameters import (SpeedProfile, rotating_paramete
                                                  total_mass_groups)
 from rotorvib.models.balancer.settling import (
     A1, A2, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
-    QUASI_STATIC, R_MIN, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
+    QUASI_STATIC, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
     WEIGHT_F, WEIGHT_R, WEIGHT_V, StopRule)
 
 STEP = 1e-3
@@ -107,8 +107,6 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     rows[:, GAIN_RE], rows[:, GAIN_IM], rows[:, FORCE_FACTOR] = gain.real, gain.imag, k + c * omega
     rows[:, UNBALANCE], rows[:, BALL_MOMENT] = M * eps, m * R
     rows[:, MARGIN], rows[:, RADIUS], rows[:, STIFFNESS] = rule.margin, R, k
-    # the smallest quasi-static whirl, of the balls gathered against the unbalance
-    rows[j, R_MIN] = np.abs(gain[j]) * (M[j] * eps[j] - n[j] * m[j] * R[j])
     rows[:, CHECK_EVERY] = np.where(rows[:, ENABLED] > 0, max(1, round(rule.check_dt / sample_dt)),
                                     np.inf)
     return rows[inverse.ravel()]

@@ -69,13 +69,12 @@ from numba import njit
 from rotorvib.models.balancer.analysers import answers_settled, answers_undefined, force_maximum
 from rotorvib.models.balancer.kinematics import disk_kinematics
 
-# layout of a certificate row (one per run): scalars (A1, A2: the ball angles of the rest point;
-# R_MIN: r_min of the residual whirl, 0 at a balanced state), then the modal weights of B_r, B_F
-# and L_F and the real and imaginary parts of V^-1 (row-major)
+# layout of a certificate row (one per run): scalars (A1, A2: the ball angles of the rest point),
+# then the modal weights of B_r, B_F and L_F and the real and imaginary parts of V^-1 (row-major)
 (ENABLED, T_FROM, W_N, A1, A2, QUASI_STATIC, GAIN_RE, GAIN_IM, FORCE_FACTOR, UNBALANCE,
- BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS, STIFFNESS, R_MIN) = range(16)
-WEIGHT_R, WEIGHT_F, WEIGHT_V, VINV_RE, VINV_IM = 16, 24, 32, 40, 104
-SIZE = 168
+ BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS, STIFFNESS) = range(15)
+WEIGHT_R, WEIGHT_F, WEIGHT_V, VINV_RE, VINV_IM = 15, 23, 31, 39, 103
+SIZE = 167
 
 @dataclass(frozen=True)
 class StopRule:
@@ -165,7 +164,9 @@ def bounds(S, y, phi, phid):
 def lower_bounds(S, y, phi, phid):
     """``(L_r, L_F)`` of the module docstring for the state ``y`` (as :func:`bounds`)."""
     amplitudes, _ = _amplitudes(S, y, phi, phid)
-    l_r = S[R_MIN]
+    # r_min: the quasi-static whirl of the least unbalance the two balls can leave
+    l_r = (np.sqrt(S[GAIN_RE] * S[GAIN_RE] + S[GAIN_IM] * S[GAIN_IM])
+           * (S[UNBALANCE] - 2.0 * S[BALL_MOMENT]))
     rate = 0.0
     for k in range(8):
         l_r -= amplitudes[k] * S[WEIGHT_R + k]
@@ -181,7 +182,8 @@ def settled(S, p, acc, t, y, r_threshold, f_threshold):
     if S[ENABLED] == 0.0 or t < S[T_FROM]:
         return False
     balanced = answers_settled(acc)
-    if not (balanced or (S[R_MIN] > 0.0 and answers_undefined(acc))):
+    beyond = S[UNBALANCE] > 2.0 * S[BALL_MOMENT]          # the existence bound (34)
+    if not (balanced or (beyond and answers_undefined(acc))):
         return False
     phi, phid, _ = disk_kinematics(t, p)
     b_r, b_f = bounds(S, y, phi, phid)
