@@ -20,8 +20,10 @@ largest errors over a batch of ``--runs`` random run-ups (DOP853 with the stop r
 rtol 1e-12) and the batch's time at each rtol against rtol 1e-7.
 
 ``--stop`` prints the evidence behind stopping runs early (``paper_b.balance.stop``): the batch
-of random run-ups with the configured integrator, with and without the stop rule, side by side:
-time, the share of runs that ended early and the number of metrics that differ (none may).
+of random run-ups with the configured integrator, a quarter of them beyond the existence bound,
+with and without the stop rule, side by side: time, the share of runs that ended early (beyond
+the bound: of those that balance and of those that never do) and the number of metrics that
+differ (none may).
 """
 
 from __future__ import annotations
@@ -34,8 +36,10 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import engine, settling
 from rotorvib.models.balancer.analysers import METRICS
+from rotorvib.models.balancer.certificates import certificates
+from rotorvib.models.balancer.kinematics import disk_kinematics
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch
 from rotorvib.papers.b.setup import Setup
 from rotorvib.pipeline.config import load_yaml, validate_config
@@ -161,9 +165,59 @@ def batch_inputs(p, y0, runs):
     return params, y0s
 
 
+def beyond_the_bound(p, params):
+    """Every fourth run of the batch ``params`` given a ball mass 0.2 .. 1 of the existence
+    bound's ``M eps / (2 R)`` (D scaled with it): some balance at a residual whirl below the
+    threshold, the others never; which of the batch's runs they are."""
+    rng = np.random.default_rng(2)
+    beyond = np.zeros(len(params), bool)
+    beyond[3::4] = True
+    M, R, eps = p[0], p[2], p[3]
+    mass = M * eps / (2 * R) * rng.uniform(0.2, 1.0, beyond.sum())
+    params[beyond, 6] *= mass / params[beyond, 1]
+    params[beyond, 1] = mass
+    return beyond
+
+
+def bound_room(params, y0s, runs):
+    """How far the linear bounds of the stop rule miss, on ``runs`` of the batch integrated
+    to ``t_end`` with every sample kept: at the first check after the run-up where the upper
+    bounds pass with no margin (``B_r <= r_threshold``, ``B_F <= f_threshold``), the largest
+    ``r`` and ``F`` of all later samples over ``B_r`` and ``B_F``; at the first where the lower
+    bounds of a run that never balances pass with none, the smallest over ``L_r`` and ``L_F``:
+    the room ``margin`` must leave (a run stops at a later check, nearer its rest point)."""
+    stops = certificates(params[:runs], SETUP.stop, DT)
+    above, below = np.zeros(2), np.full(2, np.inf)
+    for p_i, y0, S in zip(params[:runs], y0s[:runs], stops):
+        if S[settling.ENABLED] == 0.0:
+            continue
+        tr = run(engine.FIXED, p_i, y0, CRITERION, store=True, **SETUP.tolerances)
+        values = (tr.r, tr.bearing_force(p_i[4], p_i[5]))
+        high = [np.maximum.accumulate(v[::-1])[::-1] for v in values]
+        low = [np.minimum.accumulate(v[::-1])[::-1] for v in values]
+        upper = lower = False
+        for j in range(int(S[settling.T_FROM] / DT) + 1, len(tr.t) - 1,
+                       int(S[settling.CHECK_EVERY])):
+            phi, phid, _ = disk_kinematics(tr.t[j], p_i)
+            b = settling.bounds(S, tr.y[j], phi, phid)
+            if not upper and b[0] <= R_THR and b[1] <= CRITERION.f_threshold:
+                above = np.maximum(above, [high[0][j] / b[0], high[1][j] / b[1]])
+                upper = True
+            lo = settling.lower_bounds(S, tr.y[j], phi, phid)
+            if (not lower and S[settling.UNBALANCE] > 2 * S[settling.BALL_MOMENT]
+                    and lo[0] >= R_THR and lo[1] >= CRITERION.f_threshold):
+                below = np.minimum(below, [low[0][j] / lo[0], low[1][j] / lo[1]])
+                lower = True
+    print(f"room for the margin ({SETUP.stop.margin:g}), {runs} of the runs to t_end: later r "
+          f"and F at most {above[0]:.5f} and {above[1]:.5f} of B_r and B_F; in runs that never "
+          f"balance at least {below[0]:.5f} and {below[1]:.5f} of L_r and L_F")
+
+
 def stop_study(p, y0, runs):
-    """The batch with the configured integrator, with and without the stop rule, paired."""
+    """The batch with the configured integrator, with and without the stop rule, paired; a
+    quarter of its runs beyond the existence bound (:func:`beyond_the_bound`)."""
     params, y0s = batch_inputs(p, y0, runs)
+    beyond = beyond_the_bound(p, params)
     kw = dict(progress=False, **SETUP.tolerances)
     run_batch(engine.FIXED, params[:2], y0s[:2], CRITERION, stop=SETUP.stop, **kw)  # compile
     times, metrics = {False: [], True: []}, {}
@@ -188,6 +242,11 @@ def stop_study(p, y0, runs):
     print(f"balanced {balanced.mean() * 100:.0f} %; ended early "
           f"{np.mean(t_stop < T_END) * 100:.0f} %, median {np.median(t_stop[balanced] - metric(full, 'balance_time')[balanced]):.2f} s"
           f" after the balance time; metrics that differ: {differ} of {len(names) * runs}")
+    for label, runs_of in (("balanced", balanced), ("never balanced", ~balanced)):
+        mine = beyond & runs_of
+        print(f"beyond the existence bound, {label}: {mine.sum()} runs, ended early "
+              f"{np.mean(t_stop[mine] < T_END) * 100:.0f} %")
+    bound_room(params, y0s, min(runs, 200))
 
 
 def batch_convergence(p, y0, runs):
