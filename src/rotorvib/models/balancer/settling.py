@@ -148,10 +148,8 @@ def _amplitudes(S, y, phi, phid):
 
 
 @njit(cache=True, error_model="numpy")
-def bounds(S, y, phi, phid):
-    """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
-    angle ``phi`` and rate ``phid`` (:func:`_amplitudes`)."""
-    amplitudes, r_s = _amplitudes(S, y, phi, phid)
+def _upper(S, amplitudes, r_s):
+    """``(B_r, B_F)`` from the modal amplitudes and the quasi-static whirl radius."""
     b_r = r_s
     b_f = S[FORCE_FACTOR] * r_s
     for k in range(8):
@@ -161,9 +159,8 @@ def bounds(S, y, phi, phid):
 
 
 @njit(cache=True, error_model="numpy")
-def lower_bounds(S, y, phi, phid):
-    """``(L_r, L_F)`` of the module docstring for the state ``y`` (as :func:`bounds`)."""
-    amplitudes, _ = _amplitudes(S, y, phi, phid)
+def _lower(S, amplitudes):
+    """``(L_r, L_F)`` from the modal amplitudes."""
     # r_min: the quasi-static whirl of the least unbalance the two balls can leave
     l_r = (np.sqrt(S[GAIN_RE] * S[GAIN_RE] + S[GAIN_IM] * S[GAIN_IM])
            * (S[UNBALANCE] - 2.0 * S[BALL_MOMENT]))
@@ -172,6 +169,20 @@ def lower_bounds(S, y, phi, phid):
         l_r -= amplitudes[k] * S[WEIGHT_R + k]
         rate += amplitudes[k] * S[WEIGHT_V + k]
     return l_r, S[STIFFNESS] * l_r - rate
+
+
+@njit(cache=True, error_model="numpy")
+def bounds(S, y, phi, phid):
+    """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
+    angle ``phi`` and rate ``phid`` (:func:`_amplitudes`)."""
+    amplitudes, r_s = _amplitudes(S, y, phi, phid)
+    return _upper(S, amplitudes, r_s)
+
+
+@njit(cache=True, error_model="numpy")
+def lower_bounds(S, y, phi, phid):
+    """``(L_r, L_F)`` of the module docstring for the state ``y`` (as :func:`bounds`)."""
+    return _lower(S, _amplitudes(S, y, phi, phid)[0])
 
 
 @njit(cache=True, error_model="numpy")
@@ -186,12 +197,13 @@ def settled(S, p, acc, t, y, r_threshold, f_threshold):
     if not (balanced or (beyond and answers_undefined(acc))):
         return False
     phi, phid, _ = disk_kinematics(t, p)
-    b_r, b_f = bounds(S, y, phi, phid)
+    amplitudes, r_s = _amplitudes(S, y, phi, phid)
+    b_r, b_f = _upper(S, amplitudes, r_s)
     if b_f >= force_maximum(acc):
         return False
     if balanced:
         return b_r <= S[MARGIN] * r_threshold and b_f <= S[MARGIN] * f_threshold
-    l_r, l_f = lower_bounds(S, y, phi, phid)
+    l_r, l_f = _lower(S, amplitudes)
     return S[MARGIN] * l_r >= r_threshold and S[MARGIN] * l_f >= f_threshold
 
 
