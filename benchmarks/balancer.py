@@ -203,9 +203,8 @@ def bound_room(params, y0s, runs):
             if not upper and b[0] <= R_THR and b[1] <= CRITERION.f_threshold:
                 above = np.maximum(above, [high[0][j] / b[0], high[1][j] / b[1]])
                 upper = True
-            lo = settling.lower_bounds(S, tr.y[j], phi, phid)
-            if (not lower and S[settling.UNBALANCE] > 2 * S[settling.BALL_MOMENT]
-                    and lo[0] >= R_THR and lo[1] >= CRITERION.f_threshold):
+            lo = settling.lower_bounds(S, tr.y[j], phi, phid)      # < 0 where balls can balance
+            if not lower and lo[0] >= R_THR and lo[1] >= CRITERION.f_threshold:
                 below = np.minimum(below, [low[0][j] / lo[0], low[1][j] / lo[1]])
                 lower = True
     print(f"room for the margin ({SETUP.stop.margin:g}), {runs} of the runs to t_end: later r "
