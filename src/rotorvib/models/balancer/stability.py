@@ -68,7 +68,7 @@ def _stack(f, shape, *values):
     entries = f(*values)          # the 16 entries, row by row, scalars or arrays
     out = np.empty(shape + (16,))
     for i, entry in enumerate(entries):
-        out[..., i] = np.broadcast_to(np.asarray(entry, dtype=float), shape)
+        out[..., i] = entry       # broadcast by the assignment
     return out.reshape(shape + (4, 4))
 
 
