@@ -183,7 +183,8 @@ def bound_room(params, y0s, runs):
     """How far the linear bounds of the stop rule miss, on ``runs`` of the batch integrated
     to ``t_end`` with every sample kept: at the first check after the run-up where the upper
     bounds pass with no margin (``B_r <= r_threshold``, ``B_F <= f_threshold``), the largest
-    ``r`` and ``F`` of all later samples over ``B_r`` and ``B_F``; at the first where the lower
+    departure of all later samples' ``r`` and ``F`` from the rest point's ``r_e`` and ``F_e``
+    over the bounds' ``B_r - r_e`` and ``B_F - F_e`` (:mod:`settling`); at the first where the lower
     bounds of a run that never balances pass with none, the smallest over ``L_r`` and ``L_F``:
     the room ``margin`` must leave (a run stops at a later check, nearer its rest point)."""
     stops = certificates(params[:runs], SETUP.stop, DT)
@@ -201,14 +202,17 @@ def bound_room(params, y0s, runs):
             phi, phid, _ = disk_kinematics(tr.t[j], p_i)
             b = settling.bounds(S, tr.y[j], phi, phid)
             if not upper and b[0] <= R_THR and b[1] <= CRITERION.f_threshold:
-                above = np.maximum(above, [high[0][j] / b[0], high[1][j] / b[1]])
+                rest = np.array([1.0, S[settling.FORCE_FACTOR]]) * settling.rest_whirl(S)
+                above = np.maximum(above, [(high[i][j] - rest[i]) / (b[i] - rest[i])
+                                           for i in range(2)])
                 upper = True
             lo = settling.lower_bounds(S, tr.y[j], phi, phid)      # < 0 where balls can balance
             if not lower and lo[0] >= R_THR and lo[1] >= CRITERION.f_threshold:
                 below = np.minimum(below, [low[0][j] / lo[0], low[1][j] / lo[1]])
                 lower = True
     print(f"room for the margin ({SETUP.stop.margin:g}), {runs} of the runs to t_end: later r "
-          f"and F at most {above[0]:.5f} and {above[1]:.5f} of B_r and B_F; in runs that never "
+          f"and F depart from the rest point at most {above[0]:.5f} and {above[1]:.5f} of B_r - "
+          f"r_e and B_F - F_e; in runs that never "
           f"balance at least {below[0]:.5f} and {below[1]:.5f} of L_r and L_F")
 
 

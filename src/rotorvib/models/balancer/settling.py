@@ -40,8 +40,13 @@ Beyond the bound (``2 m R < M eps``) there is no balanced state: the balls gathe
 (:func:`~rotorvib.models.balancer.certificates.residual_whirl`).  The rest point is then
 ``(z_s / R, a_e, a_e, 0, ...)``, and the bounds take the quasi-static whirl out in the same way:
 the balls' separation decays slowly as ``2 m R`` nears ``M eps`` and moves ``r`` at second
-order only, through ``z_s``.  A run that balances stops as above.  One whose residual whirl
-stays above the thresholds never balances, and stops once that is known: the balls' unbalance
+order only, through ``z_s``.  The rest point itself whirls at ``r_e = |z_s(a_e)|`` (``F_e =
+(k + c W_d) r_e`` in the bound's terms), which the linearisation does not approximate: the margin
+leaves its room below the thresholds to the departure from the rest point only, and a run that
+balances stops once ``B_r - r_e <= margin (r_threshold - r_e)`` and ``B_F - F_e <= margin
+(f_threshold - F_e)`` (``r_e < r_threshold``, ``F_e < f_threshold``; at the balanced state ``r_e
+= 0`` and these are the conditions above).  One whose residual whirl stays above the thresholds
+never balances, and stops once that is known: the balls' unbalance
 is at least ``U_min = M eps - n m R`` at any angles, so that for all later times
 
 ::
@@ -172,6 +177,16 @@ def _lower(S, amplitudes):
 
 
 @njit(cache=True, error_model="numpy")
+def rest_whirl(S):
+    """The whirl radius ``r_e = |g| |M eps + m R (e^{i a_1e} + e^{i a_2e})|`` of the rest point
+    of ``S`` (``g`` the quasi-static gain): 0 at the balanced state, the residual whirl beyond
+    the existence bound."""
+    ur = S[UNBALANCE] + S[BALL_MOMENT] * (np.cos(S[A1]) + np.cos(S[A2]))
+    ui = S[BALL_MOMENT] * (np.sin(S[A1]) + np.sin(S[A2]))
+    return np.sqrt((S[GAIN_RE] * S[GAIN_RE] + S[GAIN_IM] * S[GAIN_IM]) * (ur * ur + ui * ui))
+
+
+@njit(cache=True, error_model="numpy")
 def bounds(S, y, phi, phid):
     """``(B_r, B_F)`` of the module docstring for the fixed-frame state ``y`` (two balls) at disk
     angle ``phi`` and rate ``phid`` (:func:`_amplitudes`)."""
@@ -202,7 +217,11 @@ def settled(S, p, acc, t, y, r_threshold, f_threshold):
     if b_f >= force_maximum(acc):
         return False
     if balanced:
-        return b_r <= S[MARGIN] * r_threshold and b_f <= S[MARGIN] * f_threshold
+        r_e = rest_whirl(S)
+        f_e = S[FORCE_FACTOR] * r_e
+        return (r_e < r_threshold and f_e < f_threshold
+                and b_r - r_e <= S[MARGIN] * (r_threshold - r_e)
+                and b_f - f_e <= S[MARGIN] * (f_threshold - f_e))
     l_r, l_f = _lower(S, amplitudes)
     return S[MARGIN] * l_r >= r_threshold and S[MARGIN] * l_f >= f_threshold
 
