@@ -110,6 +110,16 @@ def _wrap(a):
 
 
 @njit(cache=True, error_model="numpy")
+def _quasi_static_whirl(S, a1, a2):
+    """The steady whirl ``z_s = g U`` (m, rotating frame; real and imaginary parts) of the
+    unbalance ``U = M eps + m R (e^{i a1} + e^{i a2})`` the balls leave at the angles ``a1, a2``,
+    ``g`` the quasi-static gain of ``S``."""
+    ur = S[UNBALANCE] + S[BALL_MOMENT] * (np.cos(a1) + np.cos(a2))
+    ui = S[BALL_MOMENT] * (np.sin(a1) + np.sin(a2))
+    return S[GAIN_RE] * ur - S[GAIN_IM] * ui, S[GAIN_RE] * ui + S[GAIN_IM] * ur
+
+
+@njit(cache=True, error_model="numpy")
 def _amplitudes(S, y, phi, phid):
     """The modal amplitudes ``|c_k|`` of the fixed-frame state ``y`` (two balls) at disk angle
     ``phi`` and rate ``phid``, measured from the rest point of ``S`` or its mirror image (the
@@ -134,10 +144,9 @@ def _amplitudes(S, y, phi, phid):
     if S[QUASI_STATIC] > 0.0:
         # steady whirl of the residual unbalance U of the current ball angles, taken out of the
         # deviation and bounded on its own
-        ur = S[UNBALANCE] + S[BALL_MOMENT] * (np.cos(y[2]) + np.cos(y[3]))
-        ui = S[BALL_MOMENT] * (np.sin(y[2]) + np.sin(y[3]))
-        zr = (S[GAIN_RE] * ur - S[GAIN_IM] * ui) / R
-        zi = (S[GAIN_RE] * ui + S[GAIN_IM] * ur) / R
+        zr, zi = _quasi_static_whirl(S, y[2], y[3])
+        zr /= R
+        zi /= R
         dq[0] -= zr
         dq[1] -= zi
         r_s = R * np.sqrt(zr * zr + zi * zi)
@@ -178,12 +187,11 @@ def _lower(S, amplitudes):
 
 @njit(cache=True, error_model="numpy")
 def rest_whirl(S):
-    """The whirl radius ``r_e = |g| |M eps + m R (e^{i a_1e} + e^{i a_2e})|`` of the rest point
-    of ``S`` (``g`` the quasi-static gain): 0 at the balanced state, the residual whirl beyond
-    the existence bound."""
-    ur = S[UNBALANCE] + S[BALL_MOMENT] * (np.cos(S[A1]) + np.cos(S[A2]))
-    ui = S[BALL_MOMENT] * (np.sin(S[A1]) + np.sin(S[A2]))
-    return np.sqrt((S[GAIN_RE] * S[GAIN_RE] + S[GAIN_IM] * S[GAIN_IM]) * (ur * ur + ui * ui))
+    """The whirl radius ``r_e = |z_s|`` of the rest point of ``S`` (its ball angles
+    ``a_1e, a_2e``, :func:`_quasi_static_whirl`): 0 at the balanced state, the residual whirl
+    beyond the existence bound."""
+    zr, zi = _quasi_static_whirl(S, S[A1], S[A2])
+    return np.sqrt(zr * zr + zi * zi)
 
 
 @njit(cache=True, error_model="numpy")
