@@ -202,7 +202,7 @@ def bound_room(params, y0s, runs):
             phi, phid, _ = disk_kinematics(tr.t[j], p_i)
             b = settling.bounds(S, tr.y[j], phi, phid)
             if not upper and b[0] <= R_THR and b[1] <= CRITERION.f_threshold:
-                rest = np.array([1.0, S[settling.FORCE_FACTOR]]) * settling.rest_whirl(S)
+                rest = settling.rest_whirl(S)
                 above = np.maximum(above, [(high[i][j] - rest[i]) / (b[i] - rest[i])
                                            for i in range(2)])
                 upper = True

@@ -188,10 +188,12 @@ def _lower(S, amplitudes):
 @njit(cache=True, error_model="numpy")
 def rest_whirl(S):
     """The whirl radius ``r_e = |z_s|`` of the rest point of ``S`` (its ball angles
-    ``a_1e, a_2e``, :func:`_quasi_static_whirl`): 0 at the balanced state, the residual whirl
-    beyond the existence bound."""
+    ``a_1e, a_2e``, :func:`_quasi_static_whirl`) and its force in the bound's terms, ``F_e =
+    (k + c W_d) r_e``: 0 at the balanced state, the residual whirl beyond the existence
+    bound."""
     zr, zi = _quasi_static_whirl(S, S[A1], S[A2])
-    return np.sqrt(zr * zr + zi * zi)
+    r_e = np.sqrt(zr * zr + zi * zi)
+    return r_e, S[FORCE_FACTOR] * r_e
 
 
 @njit(cache=True, error_model="numpy")
@@ -225,8 +227,7 @@ def settled(S, p, acc, t, y, r_threshold, f_threshold):
     if b_f >= force_maximum(acc):
         return False
     if balanced:
-        r_e = rest_whirl(S)
-        f_e = S[FORCE_FACTOR] * r_e
+        r_e, f_e = rest_whirl(S)
         return (r_e < r_threshold and f_e < f_threshold
                 and b_r - r_e <= S[MARGIN] * (r_threshold - r_e)
                 and b_f - f_e <= S[MARGIN] * (f_threshold - f_e))
