@@ -6,7 +6,7 @@ import tracemalloc
 import numpy as np
 import pytest
 
-from rotorvib.methods.ga import ParetoFront
+from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.absorber.frequency_response import (
     dimensionless_amplitude,
     natural_frequencies,

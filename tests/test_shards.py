@@ -5,6 +5,7 @@ from collections import Counter
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from rotorvib.methods.ga import minimise_many
 from rotorvib.models.balancer.analysers import N_METRICS
@@ -13,10 +14,9 @@ from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset
 from rotorvib.papers.b.uncertainty import INPUTS, run_case
 from rotorvib.pipeline.shards import (
     GatheredRuns,
-    RecordedRuns,
-    ReplayedRuns,
     ShardRuns,
-    record_dataset,
+    gathered_searches,
+    searches_dataset,
     shard_dataset,
     shard_rows,
 )
@@ -145,36 +145,41 @@ def searches(runs, seeds=SEEDS):
                          n_gen=4, seed=seeds)
 
 
+def shard_of_searches(k, shards):
+    """Shard ``k`` of ``shards`` of the searches of :func:`searches`, as its job writes it (and
+    reads it back)."""
+    mine = shard_rows(len(SEEDS), k, shards).tolist()
+    results = searches(fake_runs, [SEEDS[i] for i in mine]) if mine else []
+    return searches_dataset(results, mine, "a test search", k, shards)
+
+
 @pytest.mark.parametrize("shards", [1, 2, 3, 7])
-def test_searches_replayed_from_their_shards_are_the_whole_study(shards):
-    """Each shard runs its searches whole and records their runs; all the searches replayed
-    from the records give the optima and histories of one job, and no run is computed again
-    (a shard with no search, 7 > 5, records nothing)."""
+def test_searches_gathered_from_their_shards_are_the_whole_study(shards, tmp_path):
+    """Each shard runs its searches whole and writes their results; gathered (from the files)
+    they are the optima and histories of one job, every array equal bit for bit (a shard with
+    no search, 7 > 5, writes none)."""
     whole = searches(fake_runs)
     pieces = []
     for k in range(shards):
-        recorder = RecordedRuns(fake_runs)
-        if mine := SEEDS[k::shards]:
-            searches(recorder, mine)
-        pieces.append(record_dataset(recorder, "a test search", k, shards, width=3))
-    replayed = searches(ReplayedRuns(pieces))
-    for a, b in zip(whole, replayed):
-        assert np.array_equal(a.x, b.x) and a.f == b.f
-        assert np.array_equal(a.history["best_f"], b.history["best_f"])
-    assert sum(p.sizes["run"] for p in pieces) == sum(r.history["n_eval"][-1] for r in whole)
+        path = tmp_path / f"{k}.nc"
+        shard_of_searches(k, shards).to_netcdf(path)
+        pieces.append(xr.load_dataset(path))
+    gathered = gathered_searches(pieces, len(SEEDS))
+    assert len(gathered) == len(whole)
+    for a, b in zip(whole, gathered):
+        assert np.array_equal(a.x, b.x) and a.f == b.f and a.history.keys() == b.history.keys()
+        for name in a.history:
+            assert np.array_equal(a.history[name], b.history[name])
+            assert b.history[name].dtype == np.asarray(a.history[name]).dtype
 
 
-def test_a_replay_never_computes_a_run_no_shard_made():
-    pieces = []
-    for k in range(2):
-        recorder = RecordedRuns(fake_runs)
-        searches(recorder, SEEDS[k::2])
-        pieces.append(record_dataset(recorder, "a test search", k, 2, width=3))
-    with pytest.raises(ValueError, match="in no shard's records"):
-        searches(ReplayedRuns(pieces[:1]))                     # a shard missing
-    other = pieces[0].assign(metrics=pieces[0].metrics + 1.0)  # the same runs, other metrics
-    with pytest.raises(ValueError, match="disagree"):
-        ReplayedRuns([pieces[0], other])
+def test_shards_that_do_not_hold_each_search_once_are_refused():
+    pieces = [shard_of_searches(k, 2) for k in range(2)]
+    for wrong in (pieces[:1], [*pieces, pieces[1]]):          # a shard missing, one twice
+        with pytest.raises(ValueError, match="each of the study's 5 searches exactly once"):
+            gathered_searches(wrong, len(SEEDS))
+    with pytest.raises(ValueError, match="exactly once"):
+        gathered_searches(pieces, 6)                          # another study's shards
 
 
 def test_the_sharded_run_made_each_study_in_shards(runs, tmp_path):

@@ -1,13 +1,12 @@
 """Seeded, vectorised genetic-algorithm minimisation (pymoo) with a per-generation history, and
 the Pareto front of two or more objectives by NSGA-II.
 
-Importing this module imports pymoo (and ``scipy.spatial``, about a tenth of a second): a module
-that only names the results imports them under ``TYPE_CHECKING``, and one whose other functions
+Importing this module imports pymoo (and ``scipy.spatial``, about a tenth of a second): the
+results are plain data in :mod:`rotorvib.methods.optima`, and a module whose other functions
 serve jobs that run no search imports the search where it runs it."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
@@ -19,26 +18,7 @@ from pymoo.operators.crossover.sbx import SBX
 from pymoo.operators.mutation.pm import PM
 
 from rotorvib.checks import finite_array, integer, number
-
-
-@dataclass(frozen=True)
-class GAResult:
-    """Optimum ``x`` with objective ``f``, and per-generation ``history`` arrays:
-    ``best_f``, ``mean_f`` (population), ``n_eval`` (cumulative) and ``best_x``."""
-
-    x: np.ndarray
-    f: float
-    history: dict[str, np.ndarray]
-
-
-@dataclass(frozen=True)
-class ParetoFront:
-    """Non-dominated designs ``x`` (rows) with objectives ``f`` (rows), sorted by the first
-    objective, and the number of evaluations ``n_eval`` spent."""
-
-    x: np.ndarray
-    f: np.ndarray
-    n_eval: int
+from rotorvib.methods.optima import GAResult, ParetoFront
 
 
 class _HandedOver(Problem):

@@ -21,10 +21,10 @@ The gathered dataset is byte-identical to the one a single job computes
 
 A study made of independent *searches* (a genetic algorithm per problem and seed) cannot be
 split that way: each generation's runs depend on the last one's metrics.  Its shard job ``k``
-runs the searches ``k, k + n, ...`` whole and records every run they make (:class:`RecordedRuns`);
-the gathering job runs all the searches again, every run answered from the records
-(:class:`ReplayedRuns`), which the searches, deterministic and independent of each other, ask
-for in the same order (:func:`run_search`).
+runs the searches ``k, k + n, ...`` whole and writes their results (:func:`searches_dataset`);
+the gathering job puts the results of all the searches back in their order
+(:func:`gathered_searches`) and builds the study from them, as one job builds it from the
+results of all its searches, which are independent and deterministic (:func:`run_search`).
 """
 
 from __future__ import annotations
@@ -35,6 +35,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.checks import integer
+from rotorvib.methods.optima import GAResult
 
 Runner = Callable[[list], np.ndarray]
 
@@ -116,13 +117,13 @@ class GatheredRuns:
         return out
 
 
-def _study_job(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
+def _study_job(snakemake, whole: Callable[[], xr.Dataset],
                shard_job: Callable[[int, int], xr.Dataset],
-               gathered: Callable[[list[xr.Dataset]], Runner], seed: int | None) -> None:
+               gather: Callable[[list[xr.Dataset]], xr.Dataset], seed: int | None) -> None:
     """The job of a sharded study's script, whichever of its three kinds it is: a shard (the
     wildcards ``shard`` and ``shards``) writes ``shard_job(shard, shards)``; the gathering
-    (named input ``shards``) builds the dataset with the runner ``gathered(shard datasets)``;
-    the whole study builds it with ``runs``.  ``seed`` goes into the provenance."""
+    (named input ``shards``) writes ``gather(shard datasets)``; the whole study ``whole()``.
+    ``seed`` goes into the provenance."""
     from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
     from rotorvib.pipeline.job import job_config
 
@@ -135,8 +136,10 @@ def _study_job(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
     paths = list(getattr(snakemake.input, "shards", []))
     if paths:
         producers = snakemake.params.input_producers
-        runs = gathered([read_dataset(path, producers) for path in paths])
-    write_dataset(build(runs), snakemake.output[0], provenance)
+        study = gather([read_dataset(path, producers) for path in paths])
+    else:
+        study = whole()
+    write_dataset(study, snakemake.output[0], provenance)
 
 
 def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *, width: int,
@@ -150,87 +153,66 @@ def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *,
         build(runner)
         return shard_dataset(runner, study)
 
-    _study_job(snakemake, runs, build, shard_job, GatheredRuns, seed)
+    _study_job(snakemake, lambda: build(runs), shard_job,
+               lambda pieces: build(GatheredRuns(pieces)), seed)
 
 
-def run_keys(inputs: list) -> list[bytes]:
-    """Each run's identity: the bytes of its inputs (a parameter row and an initial state, or a
-    number), as float64."""
-    return [b"".join(np.ascontiguousarray(part, dtype=float).tobytes()
-                     for part in (item if isinstance(item, tuple) else (item,)))
-            for item in inputs]
-
-
-class RecordedRuns:
-    """A runner that computes every call with ``runs`` and records each run's inputs (their
-    :func:`run_keys`) and metrics: one shard of a search."""
-
-    def __init__(self, runs: Runner):
-        self.runs = runs
-        self.keys: list[bytes] = []
-        self.metrics: list[np.ndarray] = []
-
-    def __call__(self, inputs: list) -> np.ndarray:
-        metrics = self.runs(inputs)
-        self.keys += run_keys(inputs)
-        self.metrics.append(metrics)
-        return metrics
-
-
-def record_dataset(runner: RecordedRuns, study: str, shard: int, shards: int,
-                   width: int) -> xr.Dataset:
-    """The runs a :class:`RecordedRuns` computed (``width`` metrics each): their keys as bytes
-    and their metrics."""
-    keys = (np.stack([np.frombuffer(k, dtype=np.uint8) for k in runner.keys]) if runner.keys
-            else np.zeros((0, 0), dtype=np.uint8))
-    metrics = np.concatenate(runner.metrics) if runner.metrics else np.zeros((0, width))
+def searches_dataset(results: list[GAResult], searches, study: str, shard: int,
+                     shards: int) -> xr.Dataset:
+    """The ``results`` of the searches numbered ``searches`` (their indices in the study): each
+    optimum ``x`` and ``f`` and every array of its history (``history_<name>``, one row per
+    generation)."""
+    one = {"units": "1"}
+    data = {"search": ("search", np.asarray(searches, dtype=np.int64),
+                       {"long_name": "index of the search in the study", **one})}
+    if results:
+        data["x"] = (("search", "variable"), np.array([r.x for r in results]),
+                     {"long_name": "optimum of the search", **one})
+        data["f"] = ("search", np.array([r.f for r in results], dtype=float),
+                     {"long_name": "objective at the optimum", **one})
+        for name in results[0].history:
+            values = np.array([r.history[name] for r in results])
+            dims = ("search", "generation", "variable")[:values.ndim]
+            data[f"history_{name}"] = (dims, values, {"long_name": f"{name} of each generation",
+                                                      **one})
     return xr.Dataset(
-        {"metrics": (("run", "metric"), metrics,
-                     {"long_name": "metrics of the shard's runs (rows of the engine's metric "
-                                   "table)", "units": "1"}),
-         "key": (("run", "byte"), keys,
-                 {"long_name": "the run's inputs as the bytes of float64 values",
-                  "units": "1"})},
-        attrs={"title": f"shard {shard} of {shards} of {study}",
-               "summary": f"Every run of the searches {shard}, {shard} + {shards}, ... of "
-                          f"{study}, replayed by its rule",
-               "references": f"{study}; rotorvib.pipeline.shards"})
+        data, attrs={"title": f"shard {shard} of {shards} of {study}",
+                     "summary": f"The results of the searches {shard}, {shard} + {shards}, ... "
+                                f"of {study}, gathered by its rule",
+                     "references": f"{study}; rotorvib.pipeline.shards"})
 
 
-class ReplayedRuns:
-    """A runner that answers each run of a search from its shards' records
-    (:func:`record_dataset`); a run no shard computed is an error, never computed here."""
-
-    def __init__(self, shards: list[xr.Dataset]):
-        self.table: dict[bytes, np.ndarray] = {}
-        for ds in shards:
-            for key, row in zip(ds.key.values, ds.metrics.values):
-                known = self.table.setdefault(key.tobytes(), row)
-                if not np.array_equal(known, row, equal_nan=True):
-                    raise ValueError("two shards disagree on the metrics of one run")
-
-    def __call__(self, inputs: list) -> np.ndarray:
-        try:
-            return np.array([self.table[k] for k in run_keys(inputs)])
-        except KeyError:
-            raise ValueError("a run of the search is in no shard's records: the shards come "
-                             "from another search") from None
+def gathered_searches(shards: list[xr.Dataset], n_searches: int) -> list[GAResult]:
+    """The results of the ``n_searches`` searches of a study, in their order, from its shards'
+    :func:`searches_dataset`; ``ValueError`` unless they hold each search exactly once."""
+    found = np.concatenate([ds.search.values for ds in shards])
+    if not np.array_equal(np.sort(found), np.arange(n_searches)):
+        raise ValueError(f"the shards do not hold each of the study's {n_searches} searches "
+                         f"exactly once (they hold {sorted(found.tolist())})")
+    results: list[GAResult | None] = [None] * n_searches
+    for ds in shards:
+        names = [name for name in ds.data_vars if name.startswith("history_")]
+        for j, index in enumerate(ds.search.values):
+            results[index] = GAResult(
+                x=ds.x.values[j], f=float(ds.f.values[j]),
+                history={name.removeprefix("history_"): ds[name].values[j] for name in names})
+    return results
 
 
-def run_search(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset],
-               part: Callable[[Runner, int, int], None], *, width: int, study: str,
+def run_search(snakemake, n_searches: int, solve: Callable[[list[int]], list[GAResult]],
+               build: Callable[[list[GAResult]], xr.Dataset], *, study: str,
                seed: int | None = None) -> None:
-    """The job of a study made of independent searches (a GA per problem and seed)
-    (:func:`_study_job`): a shard runs searches k, k + n, ... whole (``part(runner, k, n)``)
-    and writes every run they made (:class:`RecordedRuns`); the gathering replays all the
-    searches (``build``) from those records (:class:`ReplayedRuns`).  A search's next runs
-    depend on the last, so a shard cannot compute a share of each batch (:func:`run_study`);
-    the searches are independent and deterministic, so the replay is the whole study byte for
-    byte."""
+    """The job of a study made of ``n_searches`` independent searches (a GA per problem and
+    seed) (:func:`_study_job`): ``solve(indices)`` runs the searches of those indices and
+    returns their results, ``build(results)`` builds the study from the results of all of them
+    in order.  A shard runs the searches k, k + n, ... whole and writes their results
+    (:func:`searches_dataset`); the gathering builds the study from all the shards' results
+    (:func:`gathered_searches`).  A search's next runs depend on the last, so a shard cannot
+    compute a share of each batch (:func:`run_study`); the searches are independent and
+    deterministic, so the gathered study is the whole one byte for byte."""
     def shard_job(shard, shards):
-        shard_rows(0, shard, shards)                      # checks the pair
-        runner = RecordedRuns(runs)
-        part(runner, shard, shards)
-        return record_dataset(runner, study, shard, shards, width)
+        mine = shard_rows(n_searches, shard, shards).tolist()
+        return searches_dataset(solve(mine) if mine else [], mine, study, shard, shards)
 
-    _study_job(snakemake, runs, build, shard_job, ReplayedRuns, seed)
+    _study_job(snakemake, lambda: build(solve(list(range(n_searches)))), shard_job,
+               lambda pieces: build(gathered_searches(pieces, n_searches)), seed)

@@ -1,5 +1,8 @@
 """Genetic-algorithm search of the ball damping and mass for the shortest balance time
-(paper B, section 9), and its dataset."""
+(paper B, section 9), and its dataset.
+
+The searches import pymoo where they run (:mod:`rotorvib.methods.ga`): the job that gathers
+the searches of the GA's shards into the dataset runs none."""
 
 from __future__ import annotations
 
@@ -9,27 +12,24 @@ import xarray as xr
 from rotorvib.checks import number
 from rotorvib.io.coords import label_coord
 from rotorvib.io.progress import Progress
-from rotorvib.methods.ga import GAResult, minimise, minimise_many
+from rotorvib.methods.optima import GAResult
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, dataset_attrs,
                                      parameter_coord)
 
 
-def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float,
-                            runs=None):
+def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float):
     """``[X_i[:, (beta, mass)]] -> [balance times (s)]`` for GA problems ``{"kinematics",
-    "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch, set up by
-    ``setup`` like every study, by ``runs(inputs) -> metrics`` (``setup.runs`` unless given: a
-    shard's recorder or replay, :mod:`rotorvib.pipeline.shards`); a censored run (not balanced
-    by the criterion's ``t_end``) scores ``censored_penalty * t_end`` (>= t_end, so that it
-    never passes for a time)."""
+    "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch, set up and run
+    by ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``)
+    scores ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
     number("censored_penalty", censored_penalty, minimum=1.0, inclusive=True,
            what=" (a censored run must never score as a balance time)")
-    run = runs or (lambda inputs: setup.runs(inputs, progress=False))
 
     def objectives(xs):
-        metrics = run([pair for problem, x in zip(problems, xs)
-                       for pair in setup.batch_inputs(masses=x[:, 1], betas=x[:, 0], **problem)])
+        metrics = setup.runs([pair for problem, x in zip(problems, xs)
+                              for pair in setup.batch_inputs(masses=x[:, 1], betas=x[:, 0],
+                                                             **problem)], progress=False)
         scores = np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"),
                           censored_penalty * setup.criterion.t_end)
         return np.split(scores, np.cumsum([len(x) for x in xs])[:-1])
@@ -54,6 +54,8 @@ def _box(beta_bounds, mass_bounds) -> tuple[np.ndarray, np.ndarray]:
 
 def tune_balancer(objective, beta_bounds, mass_bounds, *, pop_size, n_gen, seed) -> GAResult:
     """Minimise one balance-time ``objective`` over the box of (beta, m)."""
+    from rotorvib.methods.ga import minimise
+
     return minimise(objective, *_box(beta_bounds, mass_bounds), pop_size=pop_size, n_gen=n_gen,
                     seed=seed)
 
@@ -67,12 +69,14 @@ def ga_searches(kinematics, eps_bars, ics: dict, seeds) -> list[tuple[dict, int]
 
 
 def solve(setup: Setup, searches: list[tuple[dict, int]], *, beta_bounds, mass_bounds,
-          pop_size, n_gen, censored_penalty, runs=None) -> list[GAResult]:
+          pop_size, n_gen, censored_penalty) -> list[GAResult]:
     """Run ``searches`` (:func:`ga_searches`) over the box of (beta, m) in lockstep, one batch
     of runs per generation (:func:`balance_time_objectives`); each generation's progress is
     logged (rotorvib.io.progress)."""
+    from rotorvib.methods.ga import minimise_many
+
     objectives = balance_time_objectives(setup, [problem for problem, _ in searches],
-                                         censored_penalty=censored_penalty, runs=runs)
+                                         censored_penalty=censored_penalty)
     progress = Progress(f"GA generations ({len(searches)} searches in lockstep)", n_gen)
     return minimise_many(objectives, len(searches), *_box(beta_bounds, mass_bounds),
                          pop_size=pop_size, n_gen=n_gen, seed=[s for _, s in searches],
@@ -81,23 +85,32 @@ def solve(setup: Setup, searches: list[tuple[dict, int]], *, beta_bounds, mass_b
 
 
 def ga_dataset(setup: Setup, *, kinematics, eps_bars, ics: dict, beta_bounds, mass_bounds,
-               pop_size, n_gen, seed, spread_seeds=(), censored_penalty,
-               runs=None) -> xr.Dataset:
+               pop_size, n_gen, seed, spread_seeds=(), censored_penalty) -> xr.Dataset:
     """Genetic algorithm over (beta, m) for every kinematics x eps_bar x initial condition
-    (section 9), all problems in lockstep (:func:`solve`; ``runs`` as there).  The optimum is
-    that of ``seed``; each problem is solved again from each of ``spread_seeds`` (in the same
-    batches), and the ``*_by_seed`` variables hold the optima of all the seeds, the first
-    ``seed``'s: the spread of a GA's answer over its seeds."""
+    (section 9), all problems in lockstep (:func:`solve`), as :func:`results_dataset`."""
+    searches = ga_searches(kinematics, eps_bars, ics, [seed, *spread_seeds])
+    results = solve(setup, searches, beta_bounds=beta_bounds, mass_bounds=mass_bounds,
+                    pop_size=pop_size, n_gen=n_gen, censored_penalty=censored_penalty)
+    return results_dataset(setup, results, kinematics=kinematics, eps_bars=eps_bars, ics=ics,
+                           pop_size=pop_size, n_gen=n_gen, seed=seed, spread_seeds=spread_seeds,
+                           censored_penalty=censored_penalty)
+
+
+def results_dataset(setup: Setup, results: list[GAResult], *, kinematics, eps_bars, ics: dict,
+                    pop_size, n_gen, seed, spread_seeds=(), censored_penalty) -> xr.Dataset:
+    """The GA's dataset from the ``results`` of all its searches, in the order of
+    :func:`ga_searches`.  The optimum is that of ``seed``; each problem is solved again from each
+    of ``spread_seeds``, and the ``*_by_seed`` variables hold the optima of all the seeds, the
+    first ``seed``'s: the spread of a GA's answer over its seeds."""
     seeds = [seed, *spread_seeds]
     shape = (len(kinematics), len(eps_bars), len(ics))
-    searches = ga_searches(kinematics, eps_bars, ics, seeds)
-    results = solve(setup, searches, beta_bounds=beta_bounds, mass_bounds=mass_bounds,
-                    pop_size=pop_size, n_gen=n_gen, censored_penalty=censored_penalty,
-                    runs=runs)
+    if len(results) != len(seeds) * int(np.prod(shape)):
+        raise ValueError(f"{len(results)} search results for {len(seeds)} seeds x "
+                         f"{int(np.prod(shape))} problems")
     x_all = np.moveaxis(np.array([r.x for r in results]).reshape((len(seeds),) + shape + (2,)),
                         0, -2)
     f_all = np.moveaxis(np.array([r.f for r in results]).reshape((len(seeds),) + shape), 0, -1)
-    first = results[:len(searches) // len(seeds)]
+    first = results[:len(results) // len(seeds)]
     history = np.array([r.history["best_f"] for r in first]).reshape(shape + (n_gen,))
     t_end = setup.criterion.t_end
     censored = f_all[..., 0] >= t_end         # scored the penalty: it is no time, kept as NaN

@@ -21,18 +21,15 @@ further from it than the standard error of its own mean balance time over the sa
 from __future__ import annotations
 
 from functools import partial
-from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.choices import R_CHOICE, ZETA_CHOICE
 from rotorvib.papers.b.setup import Setup, dataset_attrs
-
-if TYPE_CHECKING:
-    from rotorvib.methods.ga import ParetoFront
 
 _claim = partial(Reproduced.claim, "B")
 

@@ -18,13 +18,13 @@ also evaluated at every mass of the front, the curve the dual absorber has to be
 from __future__ import annotations
 
 from functools import partial
-from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
+from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.absorber.frequency_response import (amplitude, bare_rotor_amplitude,
                                                          dimensionless_amplitude, rotor_peak,
                                                          theta_eq20)
@@ -33,9 +33,6 @@ from rotorvib.models.absorber.parameters import (DUAL_NAMES, AbsorberSet, Rotor,
 from rotorvib.models.absorber.time_response import linear_response
 from rotorvib.models.absorber.tuning import den_hartog_single
 from rotorvib.papers.c.studies import REFERENCE as STUDIES_REFERENCE
-
-if TYPE_CHECKING:
-    from rotorvib.methods.ga import ParetoFront
 
 REFERENCE = f"{STUDIES_REFERENCE}; section 4 (bounds), beyond the paper"
 _claim = partial(Reproduced.claim, "C")

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorvib.methods.ga import GAResult, minimise
+from rotorvib.methods.ga import minimise
+from rotorvib.methods.optima import GAResult
 from rotorvib.models.absorber.frequency_response import theta_eq20
 from rotorvib.models.absorber.parameters import Rotor, design_bounds
 

@@ -8,12 +8,12 @@ variables carry ``long_name`` and ``units``; writing (with provenance) is left t
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import label_coord
+from rotorvib.methods.optima import GAResult
 from rotorvib.models.absorber.frequency_response import (bare_rotor_amplitude,
                                                          dimensionless_amplitude,
                                                          natural_frequencies, rotor_peak,
@@ -24,9 +24,6 @@ from rotorvib.models.absorber.parameters import (DUAL_NAMES, Rotor, design_bound
 from rotorvib.models.absorber.time_response import (linear_response, response_times, simulate,
                                                     undamped_resonance_envelope)
 from rotorvib.models.absorber.tuning import CONSTRUCTIONS, den_hartog_single, mass_ratio_family
-
-if TYPE_CHECKING:       # the GA's result is only named here: pymoo stays unloaded
-    from rotorvib.methods.ga import GAResult
 
 REFERENCE = ("Paper C: A dual dynamic vibration absorber for the torsional vibration of a rotor, "
              "tuned by a genetic algorithm (Persian, 2024; journal, volume and pages not in the "
