@@ -19,11 +19,15 @@ each round and over all of them (a ratio of sums)::
     python -m benchmarks.cold_run --against 6ede2d7 --rounds 2
 
 A run's CPU is also given job by job: a ``sitecustomize`` hook put on the run's path (for the
-measurement only, :data:`JOB_HOOK`) records the CPU of every job process as it exits, so that
-the comparison gives the ratio of the CPU of the rules both revisions have (a study's shards
-and gathering counted as its rule, every figure job as one "figures"). A revision whose jobs
-are forked from a server (6ede2d7's warm start) records none: set ``ROTORVIB_NO_WARM_START=1``
-to run its jobs as fresh processes; the counts of jobs recorded are printed.
+measurement only, :data:`JOB_HOOK`) records the CPU of every job process as it exits, and the
+figures it draws, so that the comparison gives the ratio of the CPU of the jobs both revisions
+have: those of the rules both have (a study's shards and gathering counted as its rule), and
+the figure jobs, counted together as "figures" (revisions group figures into jobs
+differently), that draw only figures both revisions draw. A figure job that draws a figure of
+a study only one revision has is that study's cost, left out like its rule. A revision whose
+jobs are forked from a server (6ede2d7's warm start) records none: set
+``ROTORVIB_NO_WARM_START=1`` to run its jobs as fresh processes; the counts of jobs recorded
+are printed.
 """
 
 from __future__ import annotations
@@ -54,8 +58,9 @@ def cpu_model() -> str:
 
 
 #: The ``sitecustomize`` of a measured run: every process that runs a Snakemake script job
-#: writes, as it exits, its rule and CPU seconds (its threads and children included) to a file
-#: in the folder ``$ROTORVIB_JOB_CPU``.
+#: writes, as it exits, its rule, its CPU seconds (its threads and children included) and the
+#: figures it draws (``paper_<p>/<name>`` of each PNG it writes) to a file in the folder
+#: ``$ROTORVIB_JOB_CPU``.
 JOB_HOOK = """import atexit, json, os, sys
 
 
@@ -64,18 +69,30 @@ def _job_cpu():
     if job is not None:
         t = os.times()
         cpu = t.user + t.system + t.children_user + t.children_system
+        figures = sorted(os.path.basename(os.path.dirname(os.path.dirname(str(path)))) + "/"
+                         + os.path.basename(str(path))[:-4]
+                         for path in getattr(job, "output", []) if str(path).endswith(".png"))
         with open(os.path.join(os.environ["ROTORVIB_JOB_CPU"], f"{os.getpid()}.json"), "w") as f:
-            json.dump({"rule": job.rule, "cpu": cpu}, f)
+            json.dump({"rule": job.rule, "cpu": cpu, "figures": figures}, f)
 
 
 atexit.register(_job_cpu)
 """
 
+#: The group of every figure job that draws only figures both revisions draw.
+FIGURES = "figures"
+
 
 def rule_group(rule: str) -> str:
     """The rule a job's CPU is counted under across revisions: a study's shard under the study's
-    rule, every figure job under "figures" (revisions group figures into jobs differently)."""
-    return "figures" if rule.startswith("figures_") else rule.removesuffix("_shard")
+    rule."""
+    return rule.removesuffix("_shard")
+
+
+def is_figure_job(job: dict) -> bool:
+    """Whether a job's record (:data:`JOB_HOOK`) is a figure job's: a rule ``figures_*`` that
+    drew figures."""
+    return job["rule"].startswith("figures_") and bool(job.get("figures"))
 
 
 def commit_of(repository: Path, revision: str) -> str:
@@ -87,9 +104,9 @@ def commit_of(repository: Path, revision: str) -> str:
 
 def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
     """Clone ``repository`` at ``revision`` into a scratch folder, run ``snakemake -j<cores>``
-    there and return the record: commit, date, cores, machine, wall and CPU seconds, and the
-    CPU seconds of its jobs by :func:`rule_group` (``jobs_cpu_s``; ``jobs``: how many jobs
-    recorded theirs)."""
+    there and return the record: commit, date, cores, machine, wall and CPU seconds, the CPU
+    seconds of its jobs by :func:`rule_group` (``jobs_cpu_s``), those of its figure jobs with
+    the figures each drew (``figure_jobs``), and how many jobs recorded theirs (``jobs``)."""
     commit = commit_of(repository, revision)
     with tempfile.TemporaryDirectory(prefix="rotorvib-cold-") as scratch:
         clone = Path(scratch) / "clone"
@@ -114,13 +131,16 @@ def cold_run(repository: Path, cores: int, revision: str = "HEAD") -> dict:
         jobs = [json.loads(p.read_text()) for p in sorted(records.glob("*.json"))]
     by_rule: dict[str, float] = {}
     for job in jobs:
-        group = rule_group(job["rule"])
-        by_rule[group] = by_rule.get(group, 0.0) + job["cpu"]
+        if not is_figure_job(job):
+            group = rule_group(job["rule"])
+            by_rule[group] = by_rule.get(group, 0.0) + job["cpu"]
     return {"commit": commit, "date": datetime.now(timezone.utc).date().isoformat(),
             "cores": cores, "machine": {"cpus": os.cpu_count(), "cpu": cpu_model(),
                                         "python": platform.python_version()},
             "wall_s": round(wall, 1), "cpu_s": round(cpu, 1), "jobs": len(jobs),
-            "jobs_cpu_s": {rule: round(v, 2) for rule, v in sorted(by_rule.items())}}
+            "jobs_cpu_s": {rule: round(v, 2) for rule, v in sorted(by_rule.items())},
+            "figure_jobs": [{"figures": job["figures"], "cpu_s": round(job["cpu"], 2)}
+                            for job in jobs if is_figure_job(job)]}
 
 
 def side_by_side(run, revisions: tuple[str, str], rounds: int) -> list[dict]:
@@ -144,20 +164,48 @@ def ratios(records: list[dict], key: str) -> tuple[list[float], float]:
     return per_round, total
 
 
+def shared_figures(records: list[dict]) -> set[str]:
+    """The figures every run of ``records`` drew."""
+    return set.intersection(*({name for job in r.get("figure_jobs", []) for name in job["figures"]}
+                              for r in records))
+
+
+def figures_cpu(record: dict, shared: set[str]) -> float:
+    """The CPU seconds of a run's figure jobs that drew only ``shared`` figures."""
+    return sum(job["cpu_s"] for job in record.get("figure_jobs", [])
+               if set(job["figures"]) <= shared)
+
+
 def rules_cpu(records: list[dict], revision: str, rules) -> dict[str, float]:
     """The CPU seconds of each of ``rules`` in ``revision``'s runs of ``records``, summed over
-    the rounds."""
-    return {rule: sum(r["jobs_cpu_s"][rule] for r in records if r["revision"] == revision)
-            for rule in rules}
+    the rounds; :data:`FIGURES`: its figure jobs that drew only figures every run drew."""
+    shared = shared_figures(records)
+    mine = [r for r in records if r["revision"] == revision]
+    return {rule: sum(figures_cpu(r, shared) if rule == FIGURES else r["jobs_cpu_s"][rule]
+                      for r in mine) for rule in rules}
 
 
 def common_jobs_ratio(records: list[dict]) -> tuple[float, list[str]]:
     """The ratio of the CPU of the first revision's jobs to the second's over the rules both
-    recorded in every round (:func:`rule_group`; sums over the rounds), and those rules."""
+    recorded in every round (:func:`rule_group`) and :data:`FIGURES` (sums over the rounds), and
+    those rules."""
     first, second = records[0]["revision"], records[1]["revision"]
     common = sorted(set.intersection(*(set(r["jobs_cpu_s"]) for r in records)))
+    if shared_figures(records):
+        common = sorted([*common, FIGURES])
     total = {rev: sum(rules_cpu(records, rev, common).values()) for rev in (first, second)}
     return total[first] / total[second], common
+
+
+def figures_left_out(records: list[dict], revision: str) -> tuple[list[str], float]:
+    """The figures ``revision`` drew that not every run drew, and the CPU seconds of its figure
+    jobs that drew any of them (summed over its rounds)."""
+    shared = shared_figures(records)
+    mine = [r for r in records if r["revision"] == revision]
+    jobs = [job for r in mine for job in r.get("figure_jobs", [])
+            if not set(job["figures"]) <= shared]
+    return (sorted({name for job in jobs for name in job["figures"]} - shared),
+            sum(job["cpu_s"] for job in jobs))
 
 
 def main(argv=None) -> None:
@@ -192,6 +240,11 @@ def main(argv=None) -> None:
             head, other = (rules_cpu(records, rev, common) for rev in ("HEAD", args.against))
             for rule in common:
                 print(f"  {rule:28s} {head[rule]:8.1f} {other[rule]:8.1f}")
+            for rev in ("HEAD", args.against):
+                names, cpu = figures_left_out(records, rev)
+                if names:
+                    print(f"left out, {rev}'s figure jobs drawing figures the other does not "
+                          f"draw ({', '.join(names)}): {cpu:.1f} s")
         return
     record = cold_run(Path.cwd(), args.cores)
     print(f"cold snakemake -j{args.cores} at {record['commit'][:7]}: {record['wall_s']} s wall, "

@@ -16,6 +16,7 @@ import benchmarks.cold_run as cold_run_module  # noqa: E402
 from benchmarks.cold_run import (  # noqa: E402
     JOB_HOOK,
     common_jobs_ratio,
+    figures_left_out,
     main,
     ratios,
     rule_group,
@@ -97,7 +98,9 @@ def test_the_hook_records_a_jobs_rule_and_cpu_as_it_exits(tmp_path):
     records.mkdir()
     (hook / "sitecustomize.py").write_text(JOB_HOOK)
     job = ("from types import SimpleNamespace\nimport time\n"
-           "snakemake = SimpleNamespace(rule='b_ga_shard')\n"
+           "snakemake = SimpleNamespace(rule='figures_b_fig8', output=["
+           "'results/paper_b/figures/fig9.png', 'results/paper_b/figures/fig9.svg', "
+           "'results/paper_b/figures/fig8.png'])\n"
            "end = time.process_time() + 0.3\nwhile time.process_time() < end: pass\n")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     subprocess.run([sys.executable, "-c", job], check=True,
@@ -105,7 +108,8 @@ def test_the_hook_records_a_jobs_rule_and_cpu_as_it_exits(tmp_path):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     accounted = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     [record] = [json.loads(p.read_text()) for p in records.glob("*.json")]
-    assert record["rule"] == "b_ga_shard"
+    assert record["rule"] == "figures_b_fig8"
+    assert record["figures"] == ["paper_b/fig8", "paper_b/fig9"]
     assert 0.3 <= record["cpu"] and abs(record["cpu"] - accounted) < 0.05, (record, accounted)
     # a process that runs no job records nothing
     subprocess.run([sys.executable, "-c", "pass"], check=True,
@@ -113,15 +117,26 @@ def test_the_hook_records_a_jobs_rule_and_cpu_as_it_exits(tmp_path):
     assert len(list(records.glob("*.json"))) == 1
 
 
-def test_jobs_are_compared_over_the_rules_both_revisions_have():
-    assert [rule_group(r) for r in ("b_ga_shard", "b_ga", "figures_b_fig8", "comparison")] == [
-        "b_ga", "b_ga", "figures", "comparison"]
-    records = [{"round": 1, "revision": "HEAD", "jobs_cpu_s": {"b_ga": 60.0, "figures": 30.0,
-                                                                "b_new_study": 5.0}},
-               {"round": 1, "revision": "old", "jobs_cpu_s": {"b_ga": 55.0, "figures": 25.0}},
-               {"round": 2, "revision": "old", "jobs_cpu_s": {"b_ga": 57.0, "figures": 23.0}},
-               {"round": 2, "revision": "HEAD", "jobs_cpu_s": {"b_ga": 62.0, "figures": 28.0,
-                                                                "b_new_study": 5.0}}]
+def test_jobs_are_compared_over_the_rules_and_figures_both_revisions_have():
+    """The rules both revisions recorded in every round, and the figure jobs that draw only
+    figures both draw (however each groups them into jobs); a new study's rule and the figure
+    job of its figure are left out alike."""
+    assert [rule_group(r) for r in ("b_ga_shard", "b_ga", "comparison")] == [
+        "b_ga", "b_ga", "comparison"]
+    head_figures = [{"figures": ["paper_b/fig8", "paper_b/fig9"], "cpu_s": 20.0},
+                    {"figures": ["paper_b/new"], "cpu_s": 4.0}]
+    old_figures = [{"figures": ["paper_b/fig8"], "cpu_s": 14.0},
+                   {"figures": ["paper_b/fig9"], "cpu_s": 12.0}]
+    records = [{"round": 1, "revision": "HEAD", "figure_jobs": head_figures,
+                "jobs_cpu_s": {"b_ga": 60.0, "b_new_study": 5.0}},
+               {"round": 1, "revision": "old", "figure_jobs": old_figures,
+                "jobs_cpu_s": {"b_ga": 55.0}},
+               {"round": 2, "revision": "old", "figure_jobs": old_figures,
+                "jobs_cpu_s": {"b_ga": 57.0}},
+               {"round": 2, "revision": "HEAD", "figure_jobs": head_figures,
+                "jobs_cpu_s": {"b_ga": 62.0, "b_new_study": 5.0}}]
     ratio, common = common_jobs_ratio(records)
     assert common == ["b_ga", "figures"]                 # the new study is left out
-    assert ratio == pytest.approx((60 + 30 + 62 + 28) / (55 + 25 + 57 + 23))
+    assert ratio == pytest.approx((60 + 20 + 62 + 20) / (55 + 26 + 57 + 26))
+    assert figures_left_out(records, "HEAD") == (["paper_b/new"], 8.0)
+    assert figures_left_out(records, "old") == ([], 0.0)
