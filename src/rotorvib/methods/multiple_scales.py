@@ -26,7 +26,6 @@ from dataclasses import dataclass
 from itertools import combinations_with_replacement
 
 import numpy as np
-from scipy.optimize import root
 
 from rotorvib.checks import finite_array, number
 
@@ -111,6 +110,8 @@ class MultipleScales:
         """``A`` solving the eight nonlinear initial-condition equations (eq. 39), by Newton's
         method from the one-term constants; :class:`ConstantsDiverged` if it does not
         converge."""
+        from scipy.optimize import root  # here: the one-term solution needs no scipy.optimize
+
         x0 = self.initial_state(x0)
         n = len(x0)
         if np.isnan(self.second_order).any():

@@ -13,8 +13,6 @@ Three routes to the same amplitude, used to check one another:
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import eigvals
-from scipy.optimize import minimize_scalar
 
 from rotorvib.checks import finite_array, integer
 from rotorvib.models.absorber.linear import matrices
@@ -83,6 +81,8 @@ def bare_rotor_amplitude(w) -> np.ndarray:
 def natural_frequencies(rotor: Rotor, sets) -> np.ndarray:
     """Undamped natural frequencies ``w_i / omega_n``, ascending: ``sqrt`` of the eigenvalues of
     ``K q = w^2 M q`` (the poles of the response without damping, where D is unbounded)."""
+    from scipy.linalg import eigvals  # here: the jobs that only evaluate eq. (20) need no scipy
+
     M, _, K = matrices(rotor, sets)
     lam = np.sort(eigvals(K, M).real)
     return np.sqrt(lam) / rotor.omega_n
@@ -93,6 +93,8 @@ def rotor_peak(rotor: Rotor, sets, *, samples: int = 4001) -> tuple[float, float
     design: sampled on ``[w_1 / 2, 2 w_n]`` around its undamped natural frequencies ``w_i``
     (log-spaced), then refined by a bounded scalar search between the neighbours of the best
     sample."""
+    from scipy.optimize import minimize_scalar  # here, as eigvals above
+
     samples = integer("samples", samples, 3, 1_000_000)
     w_nat = natural_frequencies(rotor, sets)
     w = np.geomspace(w_nat[0] / 2, 2 * w_nat[-1], samples)

@@ -40,7 +40,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 from scipy.special import wofz
 
 from rotorvib.models.balancer.kinematics import disk_kinematics
@@ -92,6 +91,8 @@ def crossing(profile: SpeedProfile, params: np.ndarray, omega: float) -> float:
     """The time at which the disk's rate (:func:`disk_rate`, ``params`` built with
     ``profile``) first reaches ``omega`` during the run-up; NaN where it never does (an
     operating speed at or below it: no passage)."""
+    from scipy.optimize import brentq  # here: the jobs that read the passage's rows find none
+
     if profile.kind != "runup" or disk_rate(params, profile.t_ramp)[0] <= omega:
         return float("nan")
     return brentq(lambda t: disk_rate(params, t)[0] - omega, 0.0, profile.t_ramp, xtol=1e-12)

@@ -23,7 +23,6 @@ import math
 
 import numpy as np
 import xarray as xr
-from scipy.optimize import brentq
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
@@ -98,6 +97,8 @@ def window_edges(plane: str, fixed: dict, p: float, omega_max: float, n: int,
     """The lower edges of the stable windows on the line ``plane = p``: the unstable -> stable
     sign changes of the growth rate on ``samples`` log-spaced speeds from 0.05 to
     ``omega_max``, refined by Brent's method."""
+    from scipy.optimize import brentq  # here: the jobs that read the boundaries invert none
+
     speeds = np.geomspace(0.05, omega_max, samples)
     args = {**fixed, plane: p}
     growth = growth_rate(omega_bar=speeds, n=n, **args)
