@@ -164,6 +164,12 @@ def ratios(records: list[dict], key: str) -> tuple[list[float], float]:
     return per_round, total
 
 
+def job_seconds(record: dict) -> float:
+    """The CPU seconds all the jobs of a run recorded, its figure jobs included."""
+    return (sum(record["jobs_cpu_s"].values())
+            + sum(job["cpu_s"] for job in record.get("figure_jobs", [])))
+
+
 def shared_figures(records: list[dict]) -> set[str]:
     """The figures every run of ``records`` drew."""
     return set.intersection(*({name for job in r.get("figure_jobs", []) for name in job["figures"]}
@@ -228,7 +234,7 @@ def main(argv=None) -> None:
         for r in records:
             print(f"round {r['round']}, {r['revision']} ({r['commit'][:7]}): {r['wall_s']} s "
                   f"wall, {r['cpu_s']} s CPU; {r['jobs']} jobs recorded their CPU, "
-                  f"{sum(r['jobs_cpu_s'].values()):.1f} s")
+                  f"{job_seconds(r):.1f} s")
         for key, name in (("cpu_s", "CPU"), ("wall_s", "wall")):
             per_round, total = ratios(records, key)
             print(f"HEAD / {args.against}, {name}: {total:.3f} (rounds: "

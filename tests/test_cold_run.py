@@ -17,6 +17,7 @@ from benchmarks.cold_run import (  # noqa: E402
     JOB_HOOK,
     common_jobs_ratio,
     figures_left_out,
+    job_seconds,
     main,
     ratios,
     rule_group,
@@ -140,3 +141,4 @@ def test_jobs_are_compared_over_the_rules_and_figures_both_revisions_have():
     assert ratio == pytest.approx((60 + 20 + 62 + 20) / (55 + 26 + 57 + 26))
     assert figures_left_out(records, "HEAD") == (["paper_b/new"], 8.0)
     assert figures_left_out(records, "old") == ([], 0.0)
+    assert job_seconds(records[0]) == 60 + 5 + 20 + 4
