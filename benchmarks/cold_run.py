@@ -176,10 +176,14 @@ def shared_figures(records: list[dict]) -> set[str]:
                               for r in records))
 
 
+def drew_only(job: dict, shared: set[str]) -> bool:
+    """Whether a figure job (a record's ``figure_jobs``) drew only ``shared`` figures."""
+    return set(job["figures"]) <= shared
+
+
 def figures_cpu(record: dict, shared: set[str]) -> float:
     """The CPU seconds of a run's figure jobs that drew only ``shared`` figures."""
-    return sum(job["cpu_s"] for job in record.get("figure_jobs", [])
-               if set(job["figures"]) <= shared)
+    return sum(job["cpu_s"] for job in record.get("figure_jobs", []) if drew_only(job, shared))
 
 
 def rules_cpu(records: list[dict], revision: str, rules) -> dict[str, float]:
@@ -208,8 +212,7 @@ def figures_left_out(records: list[dict], revision: str) -> tuple[list[str], flo
     jobs that drew any of them (summed over its rounds)."""
     shared = shared_figures(records)
     mine = [r for r in records if r["revision"] == revision]
-    jobs = [job for r in mine for job in r.get("figure_jobs", [])
-            if not set(job["figures"]) <= shared]
+    jobs = [job for r in mine for job in r.get("figure_jobs", []) if not drew_only(job, shared)]
     return (sorted({name for job in jobs for name in job["figures"]} - shared),
             sum(job["cpu_s"] for job in jobs))
 

@@ -15,13 +15,12 @@ p = snakemake.params
 ga = p.ga
 setup = Setup.from_config(**p.setup)
 searches = ga_searches(p.kinematics, ga["eps_bar"], p.ics, [ga["seed"], *ga["spread_seeds"]])
+search = {"pop_size": ga["pop_size"], "n_gen": ga["n_gen"],
+          "censored_penalty": ga["censored_penalty"]}
 run_search(snakemake, len(searches),
            lambda indices: solve(setup, [searches[i] for i in indices], beta_bounds=ga["beta"],
-                                 mass_bounds=ga["mass"], pop_size=ga["pop_size"],
-                                 n_gen=ga["n_gen"], censored_penalty=ga["censored_penalty"]),
+                                 mass_bounds=ga["mass"], **search),
            lambda results: results_dataset(setup, results, kinematics=p.kinematics,
-                                           eps_bars=ga["eps_bar"], ics=p.ics,
-                                           pop_size=ga["pop_size"], n_gen=ga["n_gen"],
-                                           seed=ga["seed"], spread_seeds=ga["spread_seeds"],
-                                           censored_penalty=ga["censored_penalty"]),
+                                           eps_bars=ga["eps_bar"], ics=p.ics, seed=ga["seed"],
+                                           spread_seeds=ga["spread_seeds"], **search),
            study="ga", seed=ga["seed"])
