@@ -10,7 +10,8 @@ within ``--target`` seconds of a reference (the engine at rtol 1e-12), so that t
 compare equal accuracy; then the time of a batch of run-ups on all cores and the
 cached-compilation time of a fresh process.
 
-    python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence | --stop]
+    python -m benchmarks.balancer [--runs 1000] [--target 1e-6] [--convergence | --stop |
+                                   --ga-bound N]
 
 ``--convergence`` prints the convergence study behind paper B's integrator
 (``paper_b.balance.integrator`` in the config): the errors
@@ -24,6 +25,12 @@ of random run-ups with the configured integrator, a quarter of them beyond the e
 with and without the stop rule, side by side: time, the share of runs that ended early (beyond
 the bound: of those that balance and of those that never do) and the number of metrics that
 differ (none may).
+
+``--ga-bound N`` prints the evidence behind bounding the GA's runs: paper B's GA, its first ``N``
+searches with the configured population and generations, with every run stopped once its
+balance time exceeds the worst of its population (as the workflow runs it) and with every run
+to its end, paired: CPU time, integration steps, the share of runs stopped above their bound,
+and the searches whose results differ (none may).
 """
 
 from __future__ import annotations
@@ -36,11 +43,13 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from rotorvib.methods.ga import minimise_many
 from rotorvib.models.balancer import engine, settling
 from rotorvib.models.balancer.analysers import METRICS
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.kinematics import disk_kinematics
 from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch
+from rotorvib.papers.b.optimise import balance_time_objectives, ga_searches
 from rotorvib.papers.b.setup import Setup
 from rotorvib.pipeline.config import load_yaml, validate_config
 
@@ -252,6 +261,59 @@ def stop_study(p, y0, runs):
     bound_room(params, y0s, min(runs, 200))
 
 
+class _Recorded(Setup):
+    """Paper B's setup that keeps the metrics of every batch it runs (in ``RECORDED``)."""
+
+    def runs(self, inputs, **kwargs):
+        metrics = super().runs(inputs, **kwargs)
+        RECORDED.append(metrics)
+        return metrics
+
+
+RECORDED: list = []
+
+
+def ga_bound_study(n_searches):
+    """Paper B's GA (its first ``n_searches``) with its runs bounded by the worst of their
+    populations and without, paired, twice each."""
+    ga = B["ga"]
+    searches = ga_searches(B["kinematics"], ga["eps_bar"], B["initial_conditions"],
+                           [ga["seed"], *ga["spread_seeds"]])[:n_searches]
+    objectives = balance_time_objectives(_Recorded.from_paper_b(B), [p for p, _ in searches],
+                                         censored_penalty=ga["censored_penalty"])
+
+    def unbounded(xs, worst):
+        return objectives(xs, np.full(len(xs), np.inf))
+
+    def search(bounded):
+        RECORDED.clear()
+        start = time.process_time()
+        results = minimise_many(objectives if bounded else unbounded, len(searches),
+                                [ga["beta"][0], ga["mass"][0]], [ga["beta"][1], ga["mass"][1]],
+                                pop_size=ga["pop_size"], n_gen=ga["n_gen"],
+                                seed=[s for _, s in searches])
+        return time.process_time() - start, results, np.concatenate(RECORDED)
+
+    search(True)                                                      # compile
+    cpu, out = {False: [], True: []}, {}
+    for _ in range(2):
+        for bounded in (False, True):
+            elapsed, *out[bounded] = search(bounded)
+            cpu[bounded].append(elapsed)
+    (full, full_runs), (cut, cut_runs) = out[False], out[True]
+    differ = sum(not (np.array_equal(a.x, b.x) and a.f == b.f
+                      and all(np.array_equal(a.history[k], b.history[k]) for k in a.history))
+                 for a, b in zip(full, cut))
+    above = metric(cut_runs, "status") == engine.ABOVE_BOUND
+    print(f"paper B's GA, {len(searches)} searches x population {ga['pop_size']} x "
+          f"{ga['n_gen']} generations ({len(cut_runs)} runs), CPU seconds of 2 rounds each")
+    print(f"every run to its end: {sum(cpu[False]):.1f}; bounded by the worst of its "
+          f"population: {sum(cpu[True]):.1f} ({sum(cpu[True]) / sum(cpu[False]):.3f}x); steps "
+          f"{metric(cut_runs, 'n_steps').sum() / metric(full_runs, 'n_steps').sum():.3f}x")
+    print(f"runs stopped above their bound: {above.sum()} ({above.mean() * 100:.0f} %); "
+          f"searches whose results differ: {differ} of {len(searches)}")
+
+
 def batch_convergence(p, y0, runs):
     """Largest errors over a batch of random run-ups against DOP853 at rtol 1e-12, and the
     batch's time, at each rtol (DOP853, stop rule of the config)."""
@@ -285,7 +347,12 @@ def main():
                         help="print the tolerance convergence study instead")
     parser.add_argument("--stop", action="store_true",
                         help="print the evidence of the stop rule instead")
+    parser.add_argument("--ga-bound", type=int, metavar="N",
+                        help="print the evidence of the GA's bounded runs (N searches) instead")
     args = parser.parse_args()
+    if args.ga_bound:
+        ga_bound_study(args.ga_bound)
+        return
     p, y0 = case()
     if args.convergence:
         convergence(p, y0)

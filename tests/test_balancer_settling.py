@@ -1,6 +1,7 @@
 """Stopping a balancer run once its answer is known (rotorvib.models.balancer.settling): the
 bounds vanish at the balanced states, hold along whole trajectories, and stopping changes no
-metric of a batch while it saves most of the integration."""
+metric of a batch while it saves most of the integration, and a run given a balance-time bound
+stops once its balance time is known to exceed it."""
 
 import fcntl
 from contextlib import contextmanager
@@ -11,7 +12,7 @@ import pytest
 
 import rotorvib.models.balancer.simulate as runner
 from rotorvib.methods.numba_cache import LOCK, MANIFEST, compile_lock, drop_if_stale
-from rotorvib.models.balancer import engine, settling
+from rotorvib.models.balancer import analysers, engine, settling
 from rotorvib.models.balancer.certificates import (
     _rotating_rows,
     certificates,
@@ -241,6 +242,42 @@ def test_stopping_changes_no_metric_and_saves_most_of_the_work(monkeypatch):
     monkeypatch.setattr(runner, "CERTIFICATE_CHUNK", 5)
     chunked = run_batch(engine.FIXED, np.array(params), np.array(y0s), criterion, stop=RULE, **kw)
     assert chunked.tobytes() == stopped.tobytes()
+
+
+def test_a_run_stops_once_its_balance_time_exceeds_its_bound():
+    """A GA needs a run's balance time only below its bound (the worst of its population):
+    random run-ups over the GA's bounds, each with a bound of 0-8 s or none. A run may stop early
+    with status ABOVE_BOUND and every metric unknown only if it balances later than its bound
+    or never, and must once it balanced later than its bound; every other run keeps all its
+    metrics bit for bit."""
+    rng = np.random.default_rng(5)
+    n = 40
+    params = np.array([fixed_parameters(machine(rng.uniform(0.006, 0.02), rng.uniform(0.1, 1.0)),
+                                        SpeedProfile(200.0, "runup", 0.5,
+                                                     ("printed", "consistent")[i % 2]))
+                       for i in range(n)])
+    y0s = np.array([fixed_state(2, r0=1e-3, theta0=0.0, phi0=rng.uniform(0, 2 * np.pi, 2))
+                    for _ in range(n)])
+    bounds = np.where(np.arange(n) % 5 == 0, np.inf, rng.uniform(0.0, 8.0, n))
+    criterion = BalanceCriterion(r_threshold=1e-4, f_threshold=1.0, t_end=10.0, sample_dt=1e-3)
+    kw = dict(method="dop853", rtol=1e-7, atol=1e-10, progress=False, stop=RULE)
+    full = run_batch(engine.FIXED, params, y0s, criterion, **kw)
+    bounded = run_batch(engine.FIXED, params, y0s, criterion, balance_bounds=bounds, **kw)
+    above = metric(bounded, "status") == engine.ABOVE_BOUND
+    time = np.where(metric(full, "balanced") == 1, metric(full, "balance_time"), np.inf)
+    assert 5 < above.sum() < n - 5 and not above[np.isinf(bounds)].any()
+    assert np.all(time[above] > bounds[above])
+    assert np.all(above[(time > bounds) & (time < 9.9)])
+    assert bounded[~above].tobytes() == full[~above].tobytes()
+    unknown = [name for name in analysers.METRICS if name not in ("status", "n_steps", "t_stop")]
+    assert all(np.isnan(metric(bounded[above], name)).all() for name in unknown)
+    assert np.all(metric(bounded, "t_stop")[above] < metric(full, "t_stop")[above])
+    assert metric(bounded, "n_steps").sum() < 0.8 * metric(full, "n_steps").sum()
+    with pytest.raises(ValueError, match="balance_bounds: one bound"):
+        run_batch(engine.FIXED, params, y0s, criterion, balance_bounds=bounds[1:], **kw)
+    with pytest.raises(ValueError, match="balance_bounds: needs a stop rule"):
+        run_batch(engine.FIXED, params, y0s, criterion, balance_bounds=bounds,
+                  **{**kw, "stop": None})
 
 
 @pytest.mark.parametrize("kappa, beta, kinematics, phi0", [

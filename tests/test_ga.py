@@ -45,7 +45,7 @@ def test_problems_in_lockstep_equal_separate_runs():
     centres = [0.3, -0.5, 0.1]
     calls = []
 
-    def objectives(xs):
+    def objectives(xs, worst):
         calls.append([len(x) for x in xs])
         return [np.sum((x - c) ** 2, axis=1) for x, c in zip(xs, centres)]
 
@@ -57,6 +57,38 @@ def test_problems_in_lockstep_equal_separate_runs():
         np.testing.assert_array_equal(res.x, alone.x)
         np.testing.assert_array_equal(res.history["best_f"], alone.history["best_f"])
         np.testing.assert_array_equal(res.history["n_eval"], alone.history["n_eval"])
+
+
+def test_a_point_worse_than_its_whole_population_may_score_inf():
+    """Fitness survival keeps the pop_size best of a population and its offspring, so an
+    offspring worse than the population's worst never survives: scoring it inf instead of its
+    value leaves every search as it was, bit for bit. Before the first population there is
+    no worst, and inf is an error there, as NaN and -inf always are."""
+    centres = [0.3, -0.5, 0.1]
+    worsts, skipped = [], []
+
+    def values(xs):
+        return [np.sum((x - c) ** 2, axis=1) for x, c in zip(xs, centres)]
+
+    def bounded(xs, worst):
+        worsts.append(worst)
+        skipped.append(sum(int((f > w).sum()) for f, w in zip(values(xs), worst)))
+        return [np.where(f > w, np.inf, f) for f, w in zip(values(xs), worst)]
+
+    kw = dict(pop_size=12, n_gen=10, seed=[7, 8, 9])
+    full = minimise_many(lambda xs, worst: values(xs), 3, [-1.0] * 2, [1.0] * 2, **kw)
+    cut = minimise_many(bounded, 3, [-1.0] * 2, [1.0] * 2, **kw)
+    assert np.isinf(worsts[0]).all() and np.isfinite(worsts[1:]).all()
+    assert sum(skipped) > 0.3 * 12 * 9 * 3              # most offspring lose to every parent
+    for a, b in zip(full, cut):
+        np.testing.assert_array_equal(a.x, b.x)
+        assert a.f == b.f
+        for name in a.history:
+            np.testing.assert_array_equal(a.history[name], b.history[name], err_msg=name)
+    for bad in (np.inf, -np.inf, np.nan):
+        with pytest.raises(FloatingPointError):
+            minimise(lambda x, bad=bad: np.full(len(x), bad), [0.0], [1.0], pop_size=4, n_gen=2,
+                     seed=0)
 
 
 def _two_centres(x):

@@ -27,7 +27,7 @@ def test_the_ga_reports_its_generations(caplog):
     """A GA in lockstep logs every generation through its progress callback."""
     seen = []
 
-    def objectives(xs):
+    def objectives(xs, worst):
         return [np.sum((x - 0.3) ** 2, axis=1) for x in xs]
 
     minimise_many(objectives, 2, [0.0, 0.0], [1.0, 1.0], pop_size=8, n_gen=5, seed=[1, 2],

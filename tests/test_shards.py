@@ -136,7 +136,7 @@ def searches(runs, seeds=SEEDS):
     """Independent GA searches (one per seed) of (m_0 - 0.3)^2 + x_1^2 over [-1, 1]^2, m_0 the
     first metric of a run whose input is the design's first coordinate; every generation of
     all of them one call of ``runs``."""
-    def objectives(xs):
+    def objectives(xs, worst):
         metrics = runs([float(v) for x in xs for v in x[:, 0]])
         f = (metrics[:, 0] - 0.3) ** 2 + np.concatenate([x[:, 1] for x in xs]) ** 2
         return np.split(f, np.cumsum([len(x) for x in xs])[:-1])

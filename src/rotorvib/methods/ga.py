@@ -38,17 +38,27 @@ class _HandedOver(Problem):
         out["F"] = self._f[:, None]
 
 
-def _checked(f, x: np.ndarray) -> np.ndarray:
-    """The objective's values for the population ``x``: one finite number per point."""
+def _checked(f, x: np.ndarray, worst: float = np.inf) -> np.ndarray:
+    """The objective's values for the population ``x``: one finite number per point, or
+    ``inf`` where the population it joins has a finite ``worst``."""
     f = np.asarray(f, dtype=float)
     if f.shape != (len(x),):
         raise ValueError(f"objective: returned shape {f.shape} for a population of "
                          f"{len(x)}, expected ({len(x)},)")
-    bad = ~np.isfinite(f)
+    bad = ~np.isfinite(f) & ~((f == np.inf) & np.isfinite(worst))
     if bad.any():
         raise FloatingPointError(f"objective: non-finite value at {int(bad.sum())} of "
                                  f"{len(x)} points, first x = {x[np.argmax(bad)].tolist()}")
     return f
+
+
+def _worst(algorithm) -> float:
+    """The largest objective value of ``algorithm``'s population; ``inf`` while it has fewer
+    than ``pop_size`` members (an offspring then survives whatever its value)."""
+    pop = algorithm.pop
+    if pop is None or len(pop) < algorithm.pop_size:
+        return np.inf
+    return float(np.max(pop.get("F")))
 
 
 class _History(Callback):
@@ -88,21 +98,28 @@ def _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta):
     return lower, upper
 
 
-def minimise_many(objectives: Callable[[list[np.ndarray]], list[np.ndarray]], n_problems: int,
-                  lower, upper, *, pop_size: int, n_gen: int, seed, sbx_eta: float = 15.0,
-                  pm_eta: float = 20.0,
+def minimise_many(objectives: Callable[[list[np.ndarray], np.ndarray], list[np.ndarray]],
+                  n_problems: int, lower, upper, *, pop_size: int, n_gen: int, seed,
+                  sbx_eta: float = 15.0, pm_eta: float = 20.0,
                   progress: Callable[[int, float], None] | None = None) -> list[GAResult]:
     """Minimise ``n_problems`` objectives over the same box ``[lower, upper]`` with pymoo's
     real-coded GA (tournament selection, SBX crossover, polynomial mutation, fitness survival),
     each for exactly ``n_gen`` generations from ``seed`` (one for all, or one per problem: the
     same problem under several seeds gives the spread of its optimum), in lockstep: every
-    generation, ``objectives([X_0, ..., X_{n-1}]) -> [f_0, ..., f_{n-1}]`` evaluates all the
-    populations in one call (one batch of runs keeps every core busy).  Each algorithm draws from
-    its own random generator, so the results equal those of ``n_problems`` separate runs of
+    generation, ``objectives([X_0, ..., X_{n-1}], worst) -> [f_0, ..., f_{n-1}]`` evaluates all
+    the populations in one call (one batch of runs keeps every core busy).  Each algorithm draws
+    from its own random generator, so the results equal those of ``n_problems`` separate runs of
     :func:`minimise`.  ``progress(generation, best_f)`` follows the first problem.
 
+    ``worst[i]`` is the largest value of problem ``i``'s population (``inf`` for the first
+    one).  Fitness survival keeps the ``pop_size`` smallest values of the population and its
+    offspring together, so an offspring whose value exceeds ``worst[i]`` can never survive (the
+    whole population beats it): the objective may score it ``inf`` instead of computing its
+    value, and the search goes exactly as it would have (tested).
+
     Bad arguments (non-finite or empty box, ``lower >= upper``, non-integer sizes) raise
-    ``ValueError`` naming them; a non-finite objective value raises ``FloatingPointError``.
+    ``ValueError`` naming them; a non-finite objective value (``inf`` but beyond a finite
+    ``worst``) raises ``FloatingPointError``.
     """
     lower, upper = _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta)
     n_problems = integer("n_problems", n_problems, 1)
@@ -119,9 +136,10 @@ def minimise_many(objectives: Callable[[list[np.ndarray]], list[np.ndarray]], n_
                         verbose=False)
         runs.append((problem, algorithm, history))
     while runs[0][1].has_next():
+        worst = np.array([_worst(algorithm) for _, algorithm, _ in runs])
         asked = [algorithm.ask() for _, algorithm, _ in runs]
         xs = [pop.get("X") for pop in asked]
-        fs = [_checked(f, x) for f, x in zip(objectives(xs), xs)]
+        fs = [_checked(f, x, w) for f, x, w in zip(objectives(xs, worst), xs, worst)]
         for (problem, algorithm, _), pop, x, f in zip(runs, asked, xs, fs):
             problem.hand_over(x, f)
             algorithm.evaluator.eval(problem, pop, algorithm=algorithm)
@@ -134,7 +152,7 @@ def minimise(objective: Callable[[np.ndarray], np.ndarray], lower, upper, *, pop
              progress: Callable[[int, float], None] | None = None) -> GAResult:
     """Minimise ``objective(X) -> f`` (``X`` of shape ``(pop, n_var)``) over the box
     ``[lower, upper]``: :func:`minimise_many` with one problem.  Deterministic for a ``seed``."""
-    return minimise_many(lambda xs: [objective(xs[0])], 1, lower, upper, pop_size=pop_size,
+    return minimise_many(lambda xs, _: [objective(xs[0])], 1, lower, upper, pop_size=pop_size,
                          n_gen=n_gen, seed=seed, sbx_eta=sbx_eta, pm_eta=pm_eta,
                          progress=progress)[0]
 

@@ -88,6 +88,23 @@ def answers_undefined(acc):
 
 
 @njit(cache=True, error_model="numpy")
+def balance_time_above(acc, bound):
+    """The balance time is certain to exceed ``bound``: the last sample, later than ``bound``, is
+    at or above the threshold, or ``r`` crossed below it after ``bound`` (a later rise only moves
+    the balance time later, and a run above the threshold at ``t_end`` has none)."""
+    if acc[_BAL] == 1.0:
+        return acc[_BAL_T] > bound
+    return acc[_T_PREV] > bound
+
+
+@njit(cache=True, error_model="numpy")
+def forget(acc):
+    """Leave every metric unknown (NaN): a run that stops before its metrics are known."""
+    acc[_BAL] = acc[_ENV] = acc[_F_DONE] = np.nan
+    acc[_F_MAX] = acc[_F_MAX_T] = np.nan
+
+
+@njit(cache=True, error_model="numpy")
 def force_maximum(acc):
     return acc[_F_MAX]
 

@@ -21,7 +21,7 @@ from rotorvib.models.balancer.kinematics import CONSTANT
 from rotorvib.models.balancer.parameters import (SpeedProfile, rotating_parameter_rows,
                                                  total_mass_groups)
 from rotorvib.models.balancer.settling import (
-    A1, A2, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
+    A1, A2, BALANCE_BOUND, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
     QUASI_STATIC, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
     WEIGHT_F, WEIGHT_R, WEIGHT_V, StopRule)
 
@@ -107,8 +107,8 @@ def certificates(params: np.ndarray, rule: StopRule, sample_dt: float) -> np.nda
     rows[:, GAIN_RE], rows[:, GAIN_IM], rows[:, FORCE_FACTOR] = gain.real, gain.imag, k + c * omega
     rows[:, UNBALANCE], rows[:, BALL_MOMENT] = M * eps, m * R
     rows[:, MARGIN], rows[:, RADIUS], rows[:, STIFFNESS] = rule.margin, R, k
-    rows[:, CHECK_EVERY] = np.where(rows[:, ENABLED] > 0, max(1, round(rule.check_dt / sample_dt)),
-                                    np.inf)
+    rows[:, CHECK_EVERY] = np.where(rows[:, ENABLED] > 0, rule.check_every(sample_dt), np.inf)
+    rows[:, BALANCE_BOUND] = np.inf
     return rows[inverse.ravel()]
 
 

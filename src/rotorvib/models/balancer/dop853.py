@@ -17,10 +17,10 @@ from numba import njit
 
 from rotorvib.models.balancer.analysers import metrics_row, new_analysers
 from rotorvib.models.balancer.borrowed import borrowed
-from rotorvib.models.balancer.engine import (NON_FINITE, OK, all_finite, cannot_step, copy_into,
-                                             initial_step, rhs, sample_into,
-                                             sampled_components)
-from rotorvib.models.balancer.settling import CHECK_EVERY, settled
+from rotorvib.models.balancer.engine import (NON_FINITE, OK, RUNNING, all_finite, cannot_step,
+                                             copy_into, initial_step, rhs, sample_into,
+                                             sampled_components, stop_status)
+from rotorvib.models.balancer.settling import CHECK_EVERY
 
 DOPRI5, DOP853 = 0, 1
 METHODS = {"dopri5": DOPRI5, "dop853": DOP853}
@@ -182,7 +182,7 @@ def integrate_dop853(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold,
                      max_steps, out, stop, A, B, C, E3, E5, D):
     """The engine's ``integrate`` with DOP853 (tableau from :func:`tableau`): the same
     samples, analysers, metrics and statuses; step control as in Hairer's code (safety 0.9,
-    factors 0.2 to 10, no growth right after a rejection) and the same early stop."""
+    factors 0.2 to 10, no growth right after a rejection) and the same early stops."""
     ny = y0.size
     return _integrate_dop853(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold,
                              f_threshold, max_steps, out, stop, A, B, C, E3, E5, D, y0.copy(),
@@ -249,6 +249,8 @@ def _integrate_dop853(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold, f_
         rejected = False
         if j_sample >= j_check:
             j_check = j_sample + stop[CHECK_EVERY]
-            if settled(stop, p, acc, t, y, r_threshold, f_threshold):
+            ending = stop_status(stop, p, acc, t, y, r_threshold, f_threshold)
+            if ending != RUNNING:
+                status = ending
                 break
     return metrics_row(acc, status, steps, t, r_threshold)

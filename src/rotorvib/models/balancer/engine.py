@@ -33,10 +33,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from rotorvib.models.balancer.analysers import metrics_row, new_analysers, observe
+from rotorvib.models.balancer.analysers import (balance_time_above, forget, metrics_row,
+                                                new_analysers, observe)
 from rotorvib.models.balancer.borrowed import borrowed
 from rotorvib.models.balancer.kinematics import disk_kinematics, speed
-from rotorvib.models.balancer.settling import CHECK_EVERY, settled
+from rotorvib.models.balancer.settling import BALANCE_BOUND, CHECK_EVERY, settled
 
 FIXED, ROTATING = 0, 1
 
@@ -44,10 +45,14 @@ FIXED, ROTATING = 0, 1
 P_FIXED = ("M", "m", "R", "eps", "k", "c", "D", "n", "Omega", "T_ramp", "profile", "kinematics")
 P_ROT = ("mu", "rho", "zeta", "beta", "n", "Omega", "T_ramp", "profile")
 
-# status codes of an integration
-OK, STEP_UNDERFLOW, NON_FINITE, MAX_STEPS = 0, 1, 2, 3
+# status codes of an integration: OK and ABOVE_BOUND (stopped once its balance time was known
+# to exceed the bound its batch gave it, every metric unknown) end a run; the others are failures
+OK, STEP_UNDERFLOW, NON_FINITE, MAX_STEPS, ABOVE_BOUND = 0, 1, 2, 3, 4
 STATUS_TEXT = {OK: "ok", STEP_UNDERFLOW: "step size underflow", NON_FINITE: "non-finite state",
-               MAX_STEPS: "maximum number of steps reached"}
+               MAX_STEPS: "maximum number of steps reached",
+               ABOVE_BOUND: "stopped above its balance-time bound"}
+#: stop_status of a run that goes on
+RUNNING = -1
 
 @njit(cache=True, error_model="numpy")
 def _solve_rotor(a11, a12, a22, b1, b2):
@@ -265,6 +270,19 @@ def sample_into(form, p, acc, out, j, t, ys, r_threshold, f_threshold):
     observe(acc, t, r, force, r_threshold, f_threshold)
 
 
+@njit(cache=True, error_model="numpy")
+def stop_status(stop, p, acc, t, y, r_threshold, f_threshold):
+    """At a check of the stop row ``stop``: ``ABOVE_BOUND`` once the balance time is known to
+    exceed the row's ``BALANCE_BOUND`` (its metrics are then left unknown), ``OK`` once the
+    metrics are settled (:func:`settling.settled`), else ``RUNNING``."""
+    if balance_time_above(acc, stop[BALANCE_BOUND]):
+        forget(acc)
+        return ABOVE_BOUND
+    if settled(stop, p, acc, t, y, r_threshold, f_threshold):
+        return OK
+    return RUNNING
+
+
 @njit(cache=True, nogil=True, error_model="numpy")
 def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
               max_steps, out, stop):
@@ -278,7 +296,8 @@ def integrate(form, p, y0, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thre
     the balance time with ``f_threshold``).  Samples are stored in ``out`` (rows) while it has
     room (pass an empty ``(0, len(y0))`` array for none).  A failed integration sets ``status``.
     Every ``stop[CHECK_EVERY]`` samples the run ends early if the certificate row ``stop``
-    (:mod:`settling`) shows that no later sample can change a metric.
+    (:mod:`settling`) shows that no later sample can change a metric, or that the balance time
+    exceeds the row's bound (:func:`stop_status`).
     """
     ny = y0.size
     return _integrate(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold, f_threshold,
@@ -355,6 +374,8 @@ def _integrate(form, p, t0, t_end, rtol, atol, sample_dt, r_threshold, f_thresho
         h *= min(5.0, max(0.2, 0.9 * e ** -0.2)) if e > 0.0 else 5.0
         if j_sample >= j_check:
             j_check = j_sample + stop[CHECK_EVERY]
-            if settled(stop, p, acc, t, y, r_threshold, f_threshold):
+            ending = stop_status(stop, p, acc, t, y, r_threshold, f_threshold)
+            if ending != RUNNING:
+                status = ending
                 break
     return metrics_row(acc, status, steps, t, r_threshold)

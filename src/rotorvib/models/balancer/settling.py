@@ -75,11 +75,12 @@ from rotorvib.models.balancer.analysers import answers_settled, answers_undefine
 from rotorvib.models.balancer.kinematics import disk_kinematics
 
 # layout of a certificate row (one per run): scalars (A1, A2: the ball angles of the rest point),
-# then the modal weights of B_r, B_F and L_F and the real and imaginary parts of V^-1 (row-major)
+# then the modal weights of B_r, B_F and L_F and the real and imaginary parts of V^-1 (row-major),
+# then the run's balance-time bound (the engine's ABOVE_BOUND stop; infinite: none)
 (ENABLED, T_FROM, W_N, A1, A2, QUASI_STATIC, GAIN_RE, GAIN_IM, FORCE_FACTOR, UNBALANCE,
  BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS, STIFFNESS) = range(15)
-WEIGHT_R, WEIGHT_F, WEIGHT_V, VINV_RE, VINV_IM = 15, 23, 31, 39, 103
-SIZE = 167
+WEIGHT_R, WEIGHT_F, WEIGHT_V, VINV_RE, VINV_IM, BALANCE_BOUND = 15, 23, 31, 39, 103, 167
+SIZE = 168
 
 @dataclass(frozen=True)
 class StopRule:
@@ -102,6 +103,10 @@ class StopRule:
     def from_config(cls, stop: dict, neutral: float) -> "StopRule":
         """From ``paper_b.balance.stop`` and ``paper_b.marginal_growth``."""
         return cls(margin=stop["margin"], check_dt=stop["check_dt"], neutral=neutral)
+
+    def check_every(self, sample_dt: float) -> int:
+        """Samples from one check of a run to the next."""
+        return max(1, round(self.check_dt / sample_dt))
 
 
 @njit(cache=True, error_model="numpy")
@@ -238,5 +243,5 @@ def settled(S, p, acc, t, y, r_threshold, f_threshold):
 def disabled() -> np.ndarray:
     """A certificate row that never lets a run stop (stored runs, the rotating form)."""
     row = np.zeros(SIZE)
-    row[CHECK_EVERY] = np.inf
+    row[CHECK_EVERY] = row[BALANCE_BOUND] = np.inf
     return row

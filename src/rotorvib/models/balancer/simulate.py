@@ -229,11 +229,14 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
 
 def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: BalanceCriterion, *,
               rtol: float = RTOL, atol: float = ATOL, method: str = METHOD,
-              stop: settling.StopRule | None = None, seed: int = 0, chunk: int = 256,
-              progress: bool = True) -> np.ndarray:
+              stop: settling.StopRule | None = None, balance_bounds=None, seed: int = 0,
+              chunk: int = 256, progress: bool = True) -> np.ndarray:
     """Metrics (rows of ``analysers.METRICS``, read with :func:`metric`) of many runs, on
     :data:`THREADS` threads; with a ``stop`` rule (FIXED form) a run ends once its metrics are
-    known (:mod:`settling`), else at ``criterion.t_end``.
+    known (:mod:`settling`), else at ``criterion.t_end``.  With it, ``balance_bounds`` (one per
+    run, ``inf`` for none) asks only whether a run's balance time exceeds its bound: a run ends
+    as soon as it is known to, with status ``engine.ABOVE_BOUND`` and every metric unknown
+    (NaN) -- a search that only needs the times below a bound (:mod:`rotorvib.methods.ga`).
 
     Each run is one call of the compiled integrator, which releases the GIL: the threads take
     the runs of a shuffled (seeded) order one at a time as they come free, so that long and
@@ -250,6 +253,13 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     c = criterion
     form, params, y0s = _checked(form, params, y0s, criterion, rtol, atol)
     instance("stop", stop, settling.StopRule, optional=True)
+    if balance_bounds is not None:
+        if stop is None or form != engine.FIXED:
+            raise ValueError("balance_bounds: needs a stop rule and the FIXED form")
+        balance_bounds = np.asarray(balance_bounds, dtype=float)
+        if balance_bounds.shape != (len(params),) or np.isnan(balance_bounds).any():
+            raise ValueError(f"balance_bounds: one bound (a number or inf) per run "
+                             f"({len(params)}), got shape {balance_bounds.shape}")
     seed, chunk = integer("seed", seed, 0), integer("chunk", chunk, 1)
     progress = flag("progress", progress)
     integrate, tableau = _integrator(method)
@@ -260,9 +270,15 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
 
     def stop_rows(runs):
         """The certificate rows (:mod:`settling`) of the runs ``runs`` (indices)."""
-        if stop is not None and form == engine.FIXED:
-            return certificates(params[runs], stop, c.sample_dt)
-        return np.tile(settling.disabled(), (len(runs), 1))
+        if stop is None or form != engine.FIXED:
+            return np.tile(settling.disabled(), (len(runs), 1))
+        rows = certificates(params[runs], stop, c.sample_dt)
+        if balance_bounds is not None:             # checked for the bound, if not to settle
+            bounded = np.isfinite(balance_bounds[runs])
+            rows[bounded, settling.BALANCE_BOUND] = balance_bounds[runs][bounded]
+            rows[bounded, settling.CHECK_EVERY] = np.minimum(
+                rows[bounded, settling.CHECK_EVERY], stop.check_every(c.sample_dt))
+        return rows
 
     def take(runs):
         for i, stop_row in runs:
@@ -290,9 +306,10 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
 
 
 def check_batch(metrics: np.ndarray) -> None:
-    """Raise :class:`IntegrationError` listing the runs of a batch that failed."""
+    """Raise :class:`IntegrationError` listing the runs of a batch that failed (a run stopped
+    above its balance-time bound has not failed)."""
     status = metric(metrics, "status")
-    failed = np.flatnonzero(status != engine.OK)
+    failed = np.flatnonzero(~np.isin(status, (engine.OK, engine.ABOVE_BOUND)))
     if failed.size:
         kinds = {engine.STATUS_TEXT[int(s)] for s in status[failed]}
         raise IntegrationError(f"{failed.size} of {len(metrics)} balancer runs failed "

@@ -13,38 +13,45 @@ from rotorvib.checks import number
 from rotorvib.io.coords import label_coord
 from rotorvib.io.progress import Progress
 from rotorvib.methods.optima import GAResult
+from rotorvib.models.balancer.engine import ABOVE_BOUND
 from rotorvib.models.balancer.simulate import metric
 from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, dataset_attrs,
                                      parameter_coord)
 
 
 def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float):
-    """``[X_i[:, (beta, mass)]] -> [balance times (s)]`` for GA problems ``{"kinematics",
-    "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch, set up and run
-    by ``setup`` like every study; a censored run (not balanced by the criterion's ``t_end``)
-    scores ``censored_penalty * t_end`` (>= t_end, so that it never passes for a time)."""
+    """``([X_i[:, (beta, mass)]], worst) -> [balance times (s)]`` for GA problems
+    ``{"kinematics", "eps_bar", "phi0_deg"}``: the populations of all problems run as one batch,
+    set up and run by ``setup`` like every study; a censored run (not balanced by the
+    criterion's ``t_end``) scores ``censored_penalty * t_end`` (>= t_end, so that it never passes
+    for a time).  A run of problem ``i`` stops as soon as its balance time is known to exceed
+    ``worst[i]`` (the worst of its population, :func:`rotorvib.methods.ga.minimise_many`) and
+    scores ``inf``: its time would not change the search."""
     number("censored_penalty", censored_penalty, minimum=1.0, inclusive=True,
            what=" (a censored run must never score as a balance time)")
 
-    def objectives(xs):
+    def objectives(xs, worst):
+        sizes = [len(x) for x in xs]
         metrics = setup.runs([pair for problem, x in zip(problems, xs)
                               for pair in setup.batch_inputs(masses=x[:, 1], betas=x[:, 0],
-                                                             **problem)], progress=False)
+                                                             **problem)],
+                             progress=False, balance_bounds=np.repeat(worst, sizes))
         scores = np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"),
                           censored_penalty * setup.criterion.t_end)
-        return np.split(scores, np.cumsum([len(x) for x in xs])[:-1])
+        scores[metric(metrics, "status") == ABOVE_BOUND] = np.inf
+        return np.split(scores, np.cumsum(sizes)[:-1])
 
     return objectives
 
 
 def balance_time_objective(setup: Setup, *, kinematics: str, eps_bar: float, phi0_deg,
                            censored_penalty: float):
-    """``X[:, (beta, mass)] -> balance time`` (s) of one problem (see
+    """``X[:, (beta, mass)] -> balance time`` (s) of one problem, every run to its end (see
     :func:`balance_time_objectives`)."""
     objectives = balance_time_objectives(
         setup, [{"kinematics": kinematics, "eps_bar": eps_bar, "phi0_deg": phi0_deg}],
         censored_penalty=censored_penalty)
-    return lambda x: objectives([x])[0]
+    return lambda x: objectives([x], [np.inf])[0]
 
 
 def _box(beta_bounds, mass_bounds) -> tuple[np.ndarray, np.ndarray]:

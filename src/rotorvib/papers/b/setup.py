@@ -174,11 +174,12 @@ class Setup:
         y0 = self.initial_state(phi0_deg)
         return [(row, y0) for row in rows]
 
-    def runs(self, inputs, *, progress: bool = True) -> np.ndarray:
-        """Metrics of many ``(params, y0)`` runs (a list or :class:`LazyInputs`), in parallel;
-        failures raise."""
+    def runs(self, inputs, *, progress: bool = True, balance_bounds=None) -> np.ndarray:
+        """Metrics of many ``(params, y0)`` runs (a list or :class:`LazyInputs`), in parallel,
+        each stopped once its balance time is known to exceed its ``balance_bounds`` entry (if
+        given: :func:`run_batch`); failures raise."""
         params, y0s = stacked(inputs)
         metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress,
-                            stop=self.stop, **self.tolerances)
+                            stop=self.stop, balance_bounds=balance_bounds, **self.tolerances)
         check_batch(metrics)
         return metrics
