@@ -44,11 +44,12 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from rotorvib.methods.ga import minimise_many
-from rotorvib.models.balancer import engine, settling
-from rotorvib.models.balancer.analysers import METRICS
+from rotorvib.models.balancer import engine, layout, settling
 from rotorvib.models.balancer.certificates import certificates
+from rotorvib.models.balancer.criteria import BalanceCriterion
 from rotorvib.models.balancer.kinematics import disk_kinematics
-from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch
+from rotorvib.models.balancer.layout import METRICS, metric
+from rotorvib.models.balancer.simulate import run, run_batch
 from rotorvib.papers.b.optimise import balance_time_objectives, ga_searches
 from rotorvib.papers.b.setup import Setup
 from rotorvib.pipeline.config import load_yaml, validate_config
@@ -80,7 +81,7 @@ LADDER = (1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10)
 
 
 def engine_run(p, y0, rtol, method="dopri5"):
-    return run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3,
+    return run(layout.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3,
                method=method).balance_time
 
 
@@ -146,14 +147,14 @@ def best_of(n, fn):
 def convergence(p, y0):
     """Balance time, envelope time, force decay time and peak force of both methods against
     the tolerance, beside a reference (DOP853 at rtol 1e-13)."""
-    ref = run(engine.FIXED, p, y0, CRITERION, rtol=1e-13, atol=1e-16, method="dop853")
+    ref = run(layout.FIXED, p, y0, CRITERION, rtol=1e-13, atol=1e-16, method="dop853")
     print(f"reference: balance {ref.balance_time:.9f} s, envelope {ref.envelope_time:.9f} s, "
           f"force decay {ref.force_decay_time:.9f} s, peak force {ref.force_max:.9f} N")
     print(f"{'method':>7} {'rtol':>6} {'steps':>7} {'d balance (s)':>14} {'d envelope (s)':>15} "
           f"{'d decay (s)':>12} {'d peak (rel)':>13}")
     for method in ("dopri5", "dop853"):
         for rtol in (1e-6, 3e-7, 1e-7, 1e-8, 1e-9, 1e-10):
-            res = run(engine.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3, method=method)
+            res = run(layout.FIXED, p, y0, CRITERION, rtol=rtol, atol=rtol * 1e-3, method=method)
             print(f"{method:>7} {rtol:6.0e} {res.n_steps:7d} "
                   f"{res.balance_time - ref.balance_time:14.1e} "
                   f"{res.envelope_time - ref.envelope_time:15.1e} "
@@ -201,7 +202,7 @@ def bound_room(params, y0s, runs):
     for p_i, y0, S in zip(params[:runs], y0s[:runs], stops):
         if S[settling.ENABLED] == 0.0:
             continue
-        tr = run(engine.FIXED, p_i, y0, CRITERION, store=True, **SETUP.tolerances)
+        tr = run(layout.FIXED, p_i, y0, CRITERION, store=True, **SETUP.tolerances)
         values = (tr.r, tr.bearing_force(p_i[4], p_i[5]))
         high = [np.maximum.accumulate(v[::-1])[::-1] for v in values]
         low = [np.minimum.accumulate(v[::-1])[::-1] for v in values]
@@ -231,12 +232,12 @@ def stop_study(p, y0, runs):
     params, y0s = batch_inputs(p, y0, runs)
     beyond = beyond_the_bound(p, params)
     kw = dict(progress=False, **SETUP.tolerances)
-    run_batch(engine.FIXED, params[:2], y0s[:2], CRITERION, stop=SETUP.stop, **kw)  # compile
+    run_batch(layout.FIXED, params[:2], y0s[:2], CRITERION, stop=SETUP.stop, **kw)  # compile
     times, metrics = {False: [], True: []}, {}
     for _ in range(3):
         for stop in (False, True):
             start = time.perf_counter()
-            metrics[stop] = run_batch(engine.FIXED, params, y0s, CRITERION,
+            metrics[stop] = run_batch(layout.FIXED, params, y0s, CRITERION,
                                       stop=SETUP.stop if stop else None, **kw)
             times[stop].append(time.perf_counter() - start)
     full, stopped = metrics[False], metrics[True]
@@ -304,7 +305,7 @@ def ga_bound_study(n_searches):
     differ = sum(not (np.array_equal(a.x, b.x) and a.f == b.f
                       and all(np.array_equal(a.history[k], b.history[k]) for k in a.history))
                  for a, b in zip(full, cut))
-    above = metric(cut_runs, "status") == engine.ABOVE_BOUND
+    above = metric(cut_runs, "status") == layout.ABOVE_BOUND
     print(f"paper B's GA, {len(searches)} searches x population {ga['pop_size']} x "
           f"{ga['n_gen']} generations ({len(cut_runs)} runs), CPU seconds of 2 rounds each")
     print(f"every run to its end: {sum(cpu[False]):.1f}; bounded by the worst of its "
@@ -320,7 +321,7 @@ def batch_convergence(p, y0, runs):
     params, y0s = batch_inputs(p, y0, runs)
 
     def batch(rtol):
-        return run_batch(engine.FIXED, params, y0s, CRITERION, method="dop853", rtol=rtol,
+        return run_batch(layout.FIXED, params, y0s, CRITERION, method="dop853", rtol=rtol,
                          atol=rtol * 1e-3, stop=SETUP.stop, progress=False)
 
     ref = batch(1e-12)
@@ -361,7 +362,7 @@ def main():
     if args.stop:
         stop_study(p, y0, args.runs)
         return
-    run(engine.FIXED, p, y0, BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT))  # compile
+    run(layout.FIXED, p, y0, BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT))  # compile
     reference = engine_run(p, y0, 1e-12)
     engine_run(p, y0, 1e-6, "dop853")  # compile
     integrators = {"engine (DOPRI5, numba)": engine_run,
@@ -382,19 +383,20 @@ def main():
         print(f"{label:36s} {rtol:6.0e} {elapsed * 1e3:8.1f} ms {elapsed / base:6.2f}x "
               f"{error:10.1e}")
     params, y0s = batch_inputs(p, y0, args.runs)
-    run_batch(engine.FIXED, params[:2], y0s[:2], BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT),
+    run_batch(layout.FIXED, params[:2], y0s[:2], BalanceCriterion(R_THR, CRITERION.f_threshold, 0.1, DT),
               progress=False)
     start = time.perf_counter()
-    metrics = run_batch(engine.FIXED, params, y0s, CRITERION, progress=False)
+    metrics = run_batch(layout.FIXED, params, y0s, CRITERION, progress=False)
     batch = time.perf_counter() - start
     print(f"batch of {args.runs} run-ups (20 s each) on all cores: {batch:.2f} s "
           f"({np.mean(metric(metrics, 'balanced') == 1) * 100:.0f} % balanced, "
-          f"{np.sum(metric(metrics, 'status') != engine.OK)} failed)")
+          f"{np.sum(metric(metrics, 'status') != layout.OK)} failed)")
     c = CRITERION
     probe = ("import time; t = time.perf_counter(); import numpy as np; "
-             "from rotorvib.models.balancer import engine; "
-             "from rotorvib.models.balancer.simulate import BalanceCriterion, run; "
-             f"run(engine.FIXED, np.array({p.tolist()}), np.array({y0.tolist()}), "
+             "from rotorvib.models.balancer import layout; "
+             "from rotorvib.models.balancer.criteria import BalanceCriterion; "
+             "from rotorvib.models.balancer.simulate import run; "
+             f"run(layout.FIXED, np.array({p.tolist()}), np.array({y0.tolist()}), "
              f"BalanceCriterion({c.r_threshold!r}, {c.f_threshold!r}, 0.01, {c.sample_dt!r})); "
              "print(time.perf_counter() - t)")
     load = float(subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,

@@ -21,7 +21,7 @@ import tracemalloc
 import numpy as np
 
 import rotorvib.papers.b.setup as setup_module
-from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.models.balancer.layout import N_METRICS
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import balance_study_dataset
 from rotorvib.pipeline.config import load_yaml, validate_config

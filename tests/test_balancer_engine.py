@@ -13,8 +13,10 @@ from scipy.integrate import ode, solve_ivp
 from conftest import ROOT
 from oracles.printed_balancer import polar_to_fixed, rhs_polar_printed
 from rotorvib.methods.integrate import IntegrationError
-from rotorvib.models.balancer import dop853, engine, settling, simulate
+from rotorvib.models.balancer import dop853, engine, layout, settling, simulate
 from rotorvib.models.balancer.borrowed import borrowed
+from rotorvib.models.balancer.criteria import BalanceCriterion
+from rotorvib.models.balancer.kinematics import profile_speed
 from rotorvib.models.balancer.parameters import (
     Balancer,
     Dimensionless,
@@ -23,13 +25,7 @@ from rotorvib.models.balancer.parameters import (
     fixed_state,
     rotating_parameters,
 )
-from rotorvib.models.balancer.simulate import (
-    MAX_STEPS,
-    BalanceCriterion,
-    check_batch,
-    run,
-    run_batch,
-)
+from rotorvib.models.balancer.simulate import MAX_STEPS, check_batch, run, run_batch
 
 R_THR, F_THR = 1e-4, 1.0
 
@@ -63,8 +59,8 @@ def scipy_reference(form, p, y0, t):
 def test_engine_matches_scipy_dop853(case):
     p = fixed_parameters(case["b"], case["prof"])
     y0 = ic(case["deg"])
-    traj = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, case["t"], 1e-3), rtol=1e-11, atol=1e-14, store=True)
-    ref = scipy_reference(engine.FIXED, p, y0, traj.t)
+    traj = run(layout.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, case["t"], 1e-3), rtol=1e-11, atol=1e-14, store=True)
+    ref = scipy_reference(layout.FIXED, p, y0, traj.t)
     scale = np.max(np.abs(ref), axis=0)
     assert np.max(np.abs(traj.y - ref) / scale) < 1e-7
 
@@ -91,9 +87,9 @@ def test_full_runup_balance_time_matches_scipy():
     Hairer's DOP853 at rtol 1e-12 agree to 1e-3 s."""
     b, prof = paper_b(), SpeedProfile(200.0, "runup", 0.5, "printed")
     p, y0 = fixed_parameters(b, prof), ic((40, 45))
-    res = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, 20.0, 1e-3))
+    res = run(layout.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, 20.0, 1e-3))
     t = np.arange(20001) * 1e-3
-    ref = hairer_reference(engine.FIXED, p, y0, t)
+    ref = hairer_reference(layout.FIXED, p, y0, t)
     r = np.hypot(ref[:, 0], ref[:, 1])
     last_above = np.flatnonzero(r >= R_THR)[-1]
     t_ref = t[last_above] + (r[last_above] - R_THR) / (r[last_above] - r[last_above + 1]) * 1e-3
@@ -112,7 +108,7 @@ def test_cartesian_printed_form_equals_paper_b_polar_equations():
     sol = solve_ivp(rhs_polar_printed, (0, 0.4), polar0, method="DOP853", rtol=1e-12,
                     atol=1e-15, t_eval=t, args=(b, prof))
     assert sol.success and np.all(sol.y[0] > 0)
-    traj = run(engine.FIXED, fixed_parameters(b, prof), y0, BalanceCriterion(R_THR, F_THR, 0.4, 1e-3), rtol=1e-12, atol=1e-15, store=True)
+    traj = run(layout.FIXED, fixed_parameters(b, prof), y0, BalanceCriterion(R_THR, F_THR, 0.4, 1e-3), rtol=1e-12, atol=1e-15, store=True)
     ref = polar_to_fixed(sol.y.T, 2)
     scale = np.max(np.abs(ref), axis=0)
     assert np.max(np.abs(traj.y - ref) / scale) < 1e-7
@@ -121,7 +117,7 @@ def test_cartesian_printed_form_equals_paper_b_polar_equations():
 def test_printed_and_consistent_kinematics_coincide_at_constant_speed():
     b = paper_b()
     y0 = ic((110, 115))
-    out = [run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant", kinematics=k)),
+    out = [run(layout.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant", kinematics=k)),
                y0, BalanceCriterion(R_THR, F_THR, 2.0, 1e-3), store=True).y
            for k in ("printed", "consistent")]
     np.testing.assert_array_equal(out[0], out[1])
@@ -129,7 +125,7 @@ def test_printed_and_consistent_kinematics_coincide_at_constant_speed():
 
 def test_printed_and_consistent_kinematics_differ_during_runup():
     b = paper_b()
-    res = [run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "runup", kinematics=k)),
+    res = [run(layout.FIXED, fixed_parameters(b, SpeedProfile(200.0, "runup", kinematics=k)),
                ic(), BalanceCriterion(R_THR, F_THR, 20.0, 1e-3))
            for k in ("printed", "consistent")]
     assert abs(res[0].balance_time - res[1].balance_time) > 1e-3
@@ -143,14 +139,14 @@ def test_rotating_frame_equals_fixed_frame(profile):
     prof = SpeedProfile(200.0, profile, 0.5, "consistent")
     d, wn = b.dimensionless(), b.omega_n_total
     y0 = ic((40, 45))
-    fixed = run(engine.FIXED, fixed_parameters(b, prof), y0, BalanceCriterion(R_THR, F_THR, 1.0, 1e-3), rtol=1e-12, atol=1e-15, store=True)
+    fixed = run(layout.FIXED, fixed_parameters(b, prof), y0, BalanceCriterion(R_THR, F_THR, 1.0, 1e-3), rtol=1e-12, atol=1e-15, store=True)
     rot_prof = SpeedProfile(prof.omega / wn, profile, prof.t_ramp * wn, "consistent")
-    Om = rot_prof.speed(0.0)[0][0]
+    Om = profile_speed(rot_prof, 0.0)[0][0]
     # at rest in the fixed frame: u' + i v' = -i Omega (u + i v)
     y0r = np.concatenate((y0[:2] / b.R, y0[2:4], [Om * y0[1] / b.R, -Om * y0[0] / b.R], y0[6:]))
-    rot = run(engine.ROTATING, rotating_parameters(d, rot_prof), y0r, BalanceCriterion(R_THR / b.R, F_THR, 1.0 * wn, 1e-3 * wn), rtol=1e-12,
+    rot = run(layout.ROTATING, rotating_parameters(d, rot_prof), y0r, BalanceCriterion(R_THR / b.R, F_THR, 1.0 * wn, 1e-3 * wn), rtol=1e-12,
               atol=1e-15, store=True)
-    phase = np.array(prof.speed(fixed.t)[3])
+    phase = np.array(profile_speed(prof, fixed.t)[3])
     z = (rot.y[:, 0] + 1j * rot.y[:, 1]) * b.R * np.exp(1j * phase)
     scale = np.max(np.abs(fixed.y[:, 0]))
     assert np.max(np.abs(z.real - fixed.y[:, 0])) < 1e-7 * scale
@@ -169,7 +165,7 @@ def test_balanced_angle_and_existence_bound():
 
 def test_long_run_settles_on_the_balanced_angle():
     b = paper_b(beta=0.5)
-    traj = run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant")), ic((100, 140)), BalanceCriterion(R_THR, F_THR, 30.0, 1e-2), store=True)
+    traj = run(layout.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant")), ic((100, 140)), BalanceCriterion(R_THR, F_THR, 30.0, 1e-2), store=True)
     phi = np.mod(traj.y[-1, 2:4] + np.pi, 2 * np.pi) - np.pi
     np.testing.assert_allclose(np.sort(phi), [-b.balanced_angle(), b.balanced_angle()], atol=1e-4)
     assert traj.r[-1] < 1e-7
@@ -178,7 +174,7 @@ def test_long_run_settles_on_the_balanced_angle():
 
 def test_unbalanced_run_is_censored_not_a_number():
     b = paper_b(beta=0.0)       # beta = 0: the balanced state is unstable (paper B, Fig 6)
-    res = run(engine.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant")), ic((45, 90)), BalanceCriterion(R_THR, F_THR, 5.0, 1e-3))
+    res = run(layout.FIXED, fixed_parameters(b, SpeedProfile(200.0, "constant")), ic((45, 90)), BalanceCriterion(R_THR, F_THR, 5.0, 1e-3))
     assert res.censored and np.isnan(res.balance_time)
 
 
@@ -189,12 +185,12 @@ def test_failures_are_reported():
     p_bad[0] = np.nan
     # the public entry points refuse the bad input before integrating ...
     with pytest.raises(ValueError, match=r"p\[0\] = nan: must be finite"):
-        run(engine.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
+        run(layout.FIXED, p_bad, ic(), BalanceCriterion(R_THR, F_THR, 1.0, 1e-3))
     # ... and the engine itself flags a failed run in its batch instead of returning numbers
-    metrics = np.stack([engine.integrate(engine.FIXED, q, ic(), 0.0, 0.5, 1e-8, 1e-11, 1e-3,
+    metrics = np.stack([engine.integrate(layout.FIXED, q, ic(), 0.0, 0.5, 1e-8, 1e-11, 1e-3,
                                          R_THR, F_THR, MAX_STEPS, np.empty((0, ic().size)),
                                          settling.disabled()) for q in (p, p_bad)])
-    assert metrics[0, 0] == engine.OK and metrics[1, 0] != engine.OK
+    assert metrics[0, 0] == layout.OK and metrics[1, 0] != layout.OK
     with pytest.raises(IntegrationError, match="1 of 2"):
         check_batch(metrics)
 
@@ -204,9 +200,9 @@ def test_batch_equals_single_runs():
     P = np.stack([fixed_parameters(bi, SpeedProfile(200.0, "runup", kinematics="printed"))
                   for bi in b])
     Y = np.stack([ic(d) for d in ((40, 45), (110, 115), (260, 265))])
-    batch = run_batch(engine.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 8.0, 1e-3), progress=False, chunk=2)
+    batch = run_batch(layout.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 8.0, 1e-3), progress=False, chunk=2)
     for i in range(3):
-        single = run(engine.FIXED, P[i], Y[i], BalanceCriterion(R_THR, F_THR, 8.0, 1e-3))
+        single = run(layout.FIXED, P[i], Y[i], BalanceCriterion(R_THR, F_THR, 8.0, 1e-3))
         assert batch[i, 2] == single.balance_time or (np.isnan(batch[i, 2]) and single.censored)
         assert batch[i, 6] == single.force_max
 
@@ -222,7 +218,7 @@ def test_a_batch_on_many_threads_equals_it_on_one(method, monkeypatch):
     batches = []
     for threads in (1, 3):
         monkeypatch.setattr(simulate, "THREADS", threads)
-        batches.append(run_batch(engine.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 2.0, 1e-3),
+        batches.append(run_batch(layout.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 2.0, 1e-3),
                                  method=method, progress=True, chunk=5))
     np.testing.assert_array_equal(*batches)
     assert len(np.unique(batches[0][:, 6])) == 12
@@ -237,12 +233,12 @@ def test_dop853_takes_scipys_steps():
     output aside) and lands on the same states to round-off."""
     p, y0 = fixed_parameters(DOP853_CASE["b"], DOP853_CASE["prof"]), ic(DOP853_CASE["deg"])
     t_end, rtol, atol = 1.0, 1e-7, 1e-10
-    traj = run(engine.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, t_end, 1e-3), rtol=rtol,
+    traj = run(layout.FIXED, p, y0, BalanceCriterion(R_THR, F_THR, t_end, 1e-3), rtol=rtol,
                atol=atol, method="dop853", store=True)
 
     def f(tt, y):
         dy = np.empty_like(y)
-        engine.rhs(engine.FIXED, tt, y, p, dy)
+        engine.rhs(layout.FIXED, tt, y, p, dy)
         return dy
 
     sol = solve_ivp(f, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=atol, dense_output=True)
@@ -257,10 +253,10 @@ def test_dop853_converges_at_order_eight_on_the_runup():
     step: halving the tolerance ladder's step size (rtol / 2^8) halves the step."""
     p, y0 = fixed_parameters(DOP853_CASE["b"], DOP853_CASE["prof"]), ic(DOP853_CASE["deg"])
     crit = BalanceCriterion(R_THR, F_THR, 0.3, 0.3)
-    ref = run(engine.FIXED, p, y0, crit, rtol=1e-13, atol=1e-16, method="dop853", store=True).y[-1]
+    ref = run(layout.FIXED, p, y0, crit, rtol=1e-13, atol=1e-16, method="dop853", store=True).y[-1]
     errors, steps = [], []
     for rtol in (1e-6, 1e-6 / 2**8, 1e-6 / 2**16):
-        traj = run(engine.FIXED, p, y0, crit, rtol=rtol, atol=rtol * 1e-3, method="dop853",
+        traj = run(layout.FIXED, p, y0, crit, rtol=rtol, atol=rtol * 1e-3, method="dop853",
                    store=True)
         errors.append(np.max(np.abs(traj.y[-1] - ref) / np.abs(ref).max()))
         steps.append(traj.result.n_steps)
@@ -271,16 +267,16 @@ def test_dop853_converges_at_order_eight_on_the_runup():
 def test_dop853_gives_the_balance_time_of_dopri5_with_fewer_steps():
     p, y0 = fixed_parameters(DOP853_CASE["b"], DOP853_CASE["prof"]), ic(DOP853_CASE["deg"])
     crit = BalanceCriterion(R_THR, F_THR, 20.0, 1e-3)
-    five = run(engine.FIXED, p, y0, crit, rtol=1e-10, atol=1e-13)
-    eight = run(engine.FIXED, p, y0, crit, rtol=1e-10, atol=1e-13, method="dop853")
+    five = run(layout.FIXED, p, y0, crit, rtol=1e-10, atol=1e-13)
+    eight = run(layout.FIXED, p, y0, crit, rtol=1e-10, atol=1e-13, method="dop853")
     assert eight.balance_time == pytest.approx(five.balance_time, abs=1e-7)
     assert eight.force_max == pytest.approx(five.force_max, rel=1e-7)
     assert eight.n_steps < five.n_steps / 3
-    batch = run_batch(engine.FIXED, np.stack([p, p]), np.stack([y0, ic((110, 115))]), crit,
+    batch = run_batch(layout.FIXED, np.stack([p, p]), np.stack([y0, ic((110, 115))]), crit,
                       rtol=1e-10, atol=1e-13, method="dop853", progress=False)
     assert batch[0, 2] == eight.balance_time
     with pytest.raises(ValueError, match="method = 'rk4'"):
-        run(engine.FIXED, p, y0, crit, method="rk4")
+        run(layout.FIXED, p, y0, crit, method="rk4")
 
 
 def test_dop853_sums_written_out_equal_the_full_tableau_sums_to_the_bit():
@@ -302,7 +298,7 @@ def test_dop853_sums_written_out_equal_the_full_tableau_sums_to_the_bit():
 
     for s in [*range(1, 12), *range(13, 16)]:
         ytmp, stages = np.empty(8), K.copy()
-        dop853._dop853_stages(engine.FIXED, p, 0.1, y, h, stages, A, C, s, s + 1, ytmp)
+        dop853._dop853_stages(layout.FIXED, p, 0.1, y, h, stages, A, C, s, s + 1, ytmp)
         np.testing.assert_array_equal(ytmp, y + h * full(A[s], s), err_msg=f"stage {s}")
     for w, count in ((B, 12), (E3, 13), (E5, 13)):
         np.testing.assert_array_equal([dop853._weighted(w, K, j) for j in range(8)], full(w, count))

@@ -12,14 +12,16 @@ import pytest
 
 import rotorvib.models.balancer.simulate as runner
 from rotorvib.methods.numba_cache import LOCK, MANIFEST, compile_lock, drop_if_stale
-from rotorvib.models.balancer import analysers, engine, settling
+from rotorvib.models.balancer import engine, layout, settling
 from rotorvib.models.balancer.certificates import (
     _rotating_rows,
     certificates,
     linearisation,
     residual_whirl,
 )
+from rotorvib.models.balancer.criteria import BalanceCriterion, StopRule
 from rotorvib.models.balancer.kinematics import disk_kinematics
+from rotorvib.models.balancer.layout import metric
 from rotorvib.models.balancer.parameters import (
     Balancer,
     SpeedProfile,
@@ -27,10 +29,10 @@ from rotorvib.models.balancer.parameters import (
     fixed_state,
     rotating_parameters,
 )
-from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch, simulate
+from rotorvib.models.balancer.simulate import run, run_batch, simulate
 from rotorvib.models.balancer.stability import jacobian
 
-RULE = settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9)
+RULE = StopRule(margin=0.5, check_dt=0.02, neutral=1e-9)
 MARGINAL = 0.006            # kg: m/M = eps_bar/2 at eps_bar = 0.012, the existence bound (34)
 BEYOND = 0.0059             # kg: 2 m R = 0.983 M eps, a residual whirl of about 2.5e-5 m
 # beyond the bound, residual whirls of 0.63, 0.71 and 0.55 of the threshold 1e-4 m: above the
@@ -226,8 +228,8 @@ def test_stopping_changes_no_metric_and_saves_most_of_the_work(monkeypatch):
         y0s.append(fixed_state(2, r0=1e-3, theta0=0.0, phi0=rng.uniform(0, 2 * np.pi, 2)))
     criterion = BalanceCriterion(r_threshold=1e-4, f_threshold=1.0, t_end=20.0, sample_dt=1e-3)
     kw = dict(method="dop853", rtol=1e-7, atol=1e-10, progress=False)
-    full = run_batch(engine.FIXED, np.array(params), np.array(y0s), criterion, **kw)
-    stopped = run_batch(engine.FIXED, np.array(params), np.array(y0s), criterion, stop=RULE, **kw)
+    full = run_batch(layout.FIXED, np.array(params), np.array(y0s), criterion, **kw)
+    stopped = run_batch(layout.FIXED, np.array(params), np.array(y0s), criterion, stop=RULE, **kw)
     for name in ("status", "balance_time", "balanced", "envelope_time", "envelope_balanced",
                  "force_max", "force_max_time", "force_decay_time", "force_decayed"):
         np.testing.assert_array_equal(metric(stopped, name), metric(full, name), err_msg=name)
@@ -240,7 +242,7 @@ def test_stopping_changes_no_metric_and_saves_most_of_the_work(monkeypatch):
     assert np.all(t_stop[balanced] > metric(full, "balance_time")[balanced])
     assert metric(stopped, "n_steps").sum() < 0.5 * metric(full, "n_steps").sum()
     monkeypatch.setattr(runner, "CERTIFICATE_CHUNK", 5)
-    chunked = run_batch(engine.FIXED, np.array(params), np.array(y0s), criterion, stop=RULE, **kw)
+    chunked = run_batch(layout.FIXED, np.array(params), np.array(y0s), criterion, stop=RULE, **kw)
     assert chunked.tobytes() == stopped.tobytes()
 
 
@@ -261,22 +263,22 @@ def test_a_run_stops_once_its_balance_time_exceeds_its_bound():
     bounds = np.where(np.arange(n) % 5 == 0, np.inf, rng.uniform(0.0, 8.0, n))
     criterion = BalanceCriterion(r_threshold=1e-4, f_threshold=1.0, t_end=10.0, sample_dt=1e-3)
     kw = dict(method="dop853", rtol=1e-7, atol=1e-10, progress=False, stop=RULE)
-    full = run_batch(engine.FIXED, params, y0s, criterion, **kw)
-    bounded = run_batch(engine.FIXED, params, y0s, criterion, balance_bounds=bounds, **kw)
-    above = metric(bounded, "status") == engine.ABOVE_BOUND
+    full = run_batch(layout.FIXED, params, y0s, criterion, **kw)
+    bounded = run_batch(layout.FIXED, params, y0s, criterion, balance_bounds=bounds, **kw)
+    above = metric(bounded, "status") == layout.ABOVE_BOUND
     time = np.where(metric(full, "balanced") == 1, metric(full, "balance_time"), np.inf)
     assert 5 < above.sum() < n - 5 and not above[np.isinf(bounds)].any()
     assert np.all(time[above] > bounds[above])
     assert np.all(above[(time > bounds) & (time < 9.9)])
     assert bounded[~above].tobytes() == full[~above].tobytes()
-    unknown = [name for name in analysers.METRICS if name not in ("status", "n_steps", "t_stop")]
+    unknown = [name for name in layout.METRICS if name not in ("status", "n_steps", "t_stop")]
     assert all(np.isnan(metric(bounded[above], name)).all() for name in unknown)
     assert np.all(metric(bounded, "t_stop")[above] < metric(full, "t_stop")[above])
     assert metric(bounded, "n_steps").sum() < 0.8 * metric(full, "n_steps").sum()
     with pytest.raises(ValueError, match="balance_bounds: one bound"):
-        run_batch(engine.FIXED, params, y0s, criterion, balance_bounds=bounds[1:], **kw)
+        run_batch(layout.FIXED, params, y0s, criterion, balance_bounds=bounds[1:], **kw)
     with pytest.raises(ValueError, match="balance_bounds: needs a stop rule"):
-        run_batch(engine.FIXED, params, y0s, criterion, balance_bounds=bounds,
+        run_batch(layout.FIXED, params, y0s, criterion, balance_bounds=bounds,
                   **{**kw, "stop": None})
 
 
@@ -359,7 +361,7 @@ def test_only_the_first_use_of_an_integrator_takes_the_compile_lock(monkeypatch)
     y0 = fixed_state(2, r0=1e-3, theta0=0.0, phi0=np.radians([40.0, 45.0]))
     criterion = BalanceCriterion(1e-4, 1.0, 0.5, 1e-3)
     for method in ("dopri5", "dop853", "dopri5", "dop853"):
-        run_batch(engine.FIXED, np.stack([p, p]), np.stack([y0, y0]), criterion, method=method,
+        run_batch(layout.FIXED, np.stack([p, p]), np.stack([y0, y0]), criterion, method=method,
                   progress=False)
-        run(engine.FIXED, p, y0, criterion, method=method)
+        run(layout.FIXED, p, y0, criterion, method=method)
     assert held == ["balancer", "balancer"]

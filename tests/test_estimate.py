@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.models.balancer.layout import N_METRICS
 from rotorvib.pipeline import estimate
 from workflow_runs import copy_run
 

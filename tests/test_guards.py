@@ -12,9 +12,10 @@ from rotorvib.methods.multiple_scales import MultipleScales
 from rotorvib.models.absorber.frequency_response import rotor_peak, steady_state, theta_eq20
 from rotorvib.models.absorber.parameters import AbsorberSet, Rotor, dual_from_vector
 from rotorvib.models.absorber.time_response import simulate as time_simulate
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
+from rotorvib.models.balancer.criteria import BalanceCriterion
 from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, fixed_parameters
-from rotorvib.models.balancer.simulate import BalanceCriterion, run_batch, simulate
+from rotorvib.models.balancer.simulate import run_batch, simulate
 from rotorvib.papers.b.optimise import balance_time_objective
 
 B = dict(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.01, zeta=0.01, beta=1.0)
@@ -53,7 +54,7 @@ def test_run_batch_names_the_non_finite_row():
     y0 = np.zeros((3, 8))
     criterion = BalanceCriterion(1e-4, 1.0, 1.0, 1e-3)
     with pytest.raises(ValueError, match=r"params\[2, 0\] = nan: must be finite"):
-        run_batch(engine.FIXED, params, y0, criterion, progress=False)
+        run_batch(layout.FIXED, params, y0, criterion, progress=False)
 
 
 @pytest.mark.parametrize("make, named", [

@@ -18,7 +18,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from rotorvib.methods.integrate import IntegrationError
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
+from rotorvib.models.balancer.criteria import BalanceCriterion, StopRule
+from rotorvib.models.balancer.layout import metric
 from rotorvib.models.balancer.parameters import (
     Balancer,
     Dimensionless,
@@ -27,8 +29,7 @@ from rotorvib.models.balancer.parameters import (
     fixed_state,
     rotating_parameters,
 )
-from rotorvib.models.balancer.settling import StopRule
-from rotorvib.models.balancer.simulate import BalanceCriterion, metric, run, run_batch, simulate
+from rotorvib.models.balancer.simulate import run, run_batch, simulate
 
 B = Balancer.from_paper_b(M=1.0, k=1e4, R=0.1, m_bar=0.01, eps_bar=0.012, zeta=0.01, beta=2.0)
 PROFILE = SpeedProfile(200.0, "runup", t_ramp=0.02)
@@ -40,7 +41,7 @@ SETTINGS = settings(max_examples=150, deadline=None, derandomize=True,
                     suppress_health_check=[HealthCheck.too_slow])
 
 # Hostile numbers for one column of a parameter row, and the columns' allowed ranges
-# (engine.P_FIXED, engine.P_ROT as documented).
+# (layout.P_FIXED, layout.P_ROT as documented).
 NUMBERS = [math.nan, math.inf, -math.inf, -1.0, 0.0, 1e-300, 0.5, 1.0, 1.5, 2.0, 3.0, 65.0,
            1e9, 1e300]
 FIXED_OK = {"M": "pos", "m": "pos", "R": "pos", "eps": "nonneg", "k": "pos", "c": "nonneg",
@@ -69,10 +70,10 @@ def parameter_rows(draw):
     if kind == "none":
         return params, True
     if kind == "column":
-        j = draw(st.integers(0, len(engine.P_FIXED) - 1))
+        j = draw(st.integers(0, len(layout.P_FIXED) - 1))
         value = draw(st.sampled_from(NUMBERS))
         params[draw(st.integers(0, 1)), j] = value
-        return params, _column_ok(FIXED_OK[engine.P_FIXED[j]], value)
+        return params, _column_ok(FIXED_OK[layout.P_FIXED[j]], value)
     if kind == "shape":
         return draw(st.sampled_from([params[:, :-1], np.hstack([params, params[:, :1]]),
                                      params[0], params[None], np.empty((0,))])), False
@@ -81,7 +82,7 @@ def parameter_rows(draw):
 
 
 VALUES = {   # argument -> [(value, valid)]
-    "form": [(engine.FIXED, True), (2, False), (-1, False),
+    "form": [(layout.FIXED, True), (2, False), (-1, False),
              (True, False), ("0", False), (None, False), (0.0, False)],
     "chunk": [(1, True), (3, True), (256, True), (0, False), (-5, False), (1.5, False),
               ("2", False), (None, False), (True, False)],
@@ -119,7 +120,7 @@ def _one_at_a_time(params, y0s, method, rtol, atol) -> list[tuple[bool, float]]:
     answers = []
     for p, y in zip(params, y0s):
         try:
-            answers.append((True, run(engine.FIXED, p, y, CRITERION, method=method, rtol=rtol,
+            answers.append((True, run(layout.FIXED, p, y, CRITERION, method=method, rtol=rtol,
                                       atol=atol).force_max))
         except IntegrationError:
             answers.append((False, math.nan))
@@ -168,7 +169,7 @@ def test_run_batch_refuses_naming_the_argument_or_answers_as_single_runs(call):
     if kwargs["stop"] is not None:      # an early stop changes only how long a run lasts
         return
     singles = _one_at_a_time(params, y0s, kwargs["method"], kwargs["rtol"], kwargs["atol"])
-    ok = metric(metrics, "status") == engine.OK
+    ok = metric(metrics, "status") == layout.OK
     assert ok.tolist() == [done for done, _ in singles]
     assert metric(metrics, "force_max")[ok].tolist() == [f for done, f in singles if done]
 
@@ -231,7 +232,7 @@ def test_a_run_longer_than_its_budget_is_refused_before_it_starts():
     """A disk at 1e9 rad/s for 0.04 s is 4e7 radians: refused at once, not run for minutes."""
     fast = fixed_parameters(B, SpeedProfile(1e9, "constant"))
     with pytest.raises(ValueError, match=r"p\[0\] with t_end = 0.04: the run spans 4e\+07"):
-        run(engine.FIXED, fast, Y0, CRITERION)
+        run(layout.FIXED, fast, Y0, CRITERION)
 
 
 def test_the_rotating_form_checks_its_own_layout():
@@ -239,9 +240,9 @@ def test_the_rotating_form_checks_its_own_layout():
     bad = ROT.copy()
     bad[0] = 1.0
     with pytest.raises(ValueError, match=r"p\[0, 0\] \(mu\) = 1.0: must be in \(0, 1\)"):
-        run(engine.ROTATING, bad, Y0, CRITERION)
+        run(layout.ROTATING, bad, Y0, CRITERION)
     with pytest.raises(ValueError, match=r"p: shape \(1, 8\), expected \(any, 12\)"):
-        run(engine.FIXED, ROT, Y0, CRITERION)
+        run(layout.FIXED, ROT, Y0, CRITERION)
 
 
 def test_simulate_names_its_own_arguments():

@@ -7,10 +7,11 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
 from rotorvib.methods.multiple_scales import ConstantsDiverged, MultipleScales
-from rotorvib.models.balancer import engine, stability
+from rotorvib.models.balancer import engine, layout, stability
+from rotorvib.models.balancer.criteria import BalanceCriterion
 from rotorvib.models.balancer.expansion import balanced_state, taylor_at
 from rotorvib.models.balancer.parameters import Dimensionless, SpeedProfile, rotating_parameters
-from rotorvib.models.balancer.simulate import BalanceCriterion, run
+from rotorvib.models.balancer.simulate import run
 from rotorvib.papers.a.studies import offset_vector
 
 J2 = np.array([[0.0, 1.0], [-4.0, -0.3]])        # damped oscillator ...
@@ -123,7 +124,7 @@ def test_balancer_error_orders_against_runge_kutta(balancer):
     errors = []
     for delta in (0.025, 0.0125):
         x0 = delta * np.array([0.5, 0.0, 1.0, -0.7, 0.0, 0.0, 0.0, 0.0])
-        rk = run(engine.ROTATING, p, z + x0, BalanceCriterion(1e-9, 1e-9, 60.0, 0.05), rtol=1e-12, atol=1e-14, store=True)
+        rk = run(layout.ROTATING, p, z + x0, BalanceCriterion(1e-9, 1e-9, 60.0, 0.05), rtol=1e-12, atol=1e-14, store=True)
         errors.append([np.abs(ms.one_term(x0, rk.t) - (rk.y - z)).max(),
                        np.abs(ms.two_term(x0, rk.t) - (rk.y - z)).max()])
     (e1a, e2a), (e1b, e2b) = errors

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from rotorvib.comparison import verdict
-from rotorvib.models.balancer import engine
-from rotorvib.models.balancer.simulate import metric
+from rotorvib.models.balancer import layout
+from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.optimise import balance_time_objective, ga_dataset, tune_balancer
 
 IC1 = (40.0, 45.0)
@@ -33,7 +33,7 @@ def test_ga_objective_runs_any_number_of_balls(setup):
     three = dataclasses.replace(setup, n=3)
     p, y0 = three.run_inputs(mass=0.01, eps_bar=0.012, beta=1.0, phi0_deg=(40.0, 45.0, 200.0),
                              kinematics="printed")
-    assert y0.shape == (10,) and p[engine.P_FIXED.index("n")] == 3
+    assert y0.shape == (10,) and p[layout.P_FIXED.index("n")] == 3
     objective = balance_time_objective(three, kinematics="printed", eps_bar=0.012,
                                        phi0_deg=(40.0, 45.0, 200.0), censored_penalty=2.0)
     t = objective(np.array([[1.0, 0.01]]))

@@ -4,7 +4,7 @@ of the mode that carries the whirl), the factor that moves the time, and the law
 import numpy as np
 import pytest
 
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
 from rotorvib.models.balancer.simulate import run
 
 
@@ -22,7 +22,7 @@ def test_the_law_uses_the_slowest_decaying_mode_and_predicts_a_run(setup):
     assert rate[0] == pytest.approx(-growth[0], rel=1e-12)          # inside the bound
     assert abs(growth[1]) < 1e-9 < rate[1]                         # on it: a neutral mode
     assert np.isnan(slow_decay_rate(m_bar, 0.03, zeta, beta, omega_bar, neutral=1e-9))
-    result = run(engine.FIXED, *setup.run_inputs(mass=0.01, beta=1.0, eps_bar=0.01,
+    result = run(layout.FIXED, *setup.run_inputs(mass=0.01, beta=1.0, eps_bar=0.01,
                                                  phi0_deg=(45.0, 90.0), kinematics="printed"),
                  setup.criterion, **setup.tolerances)
     wn = np.sqrt(setup.k / setup.M)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from rotorvib.comparison import verdict
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
 from rotorvib.models.balancer.simulate import run
 
 
@@ -19,7 +19,7 @@ def test_the_robust_objectives_are_the_mean_time_and_the_worst_force_of_direct_r
     f = robust_objectives(design_runs(setup, phi, kinematics="printed", eps_bar=0.012,
                                       speed=220.0), censored_time=16.0)(designs)
     for (beta, mass), (mean_time, worst_force) in zip(designs, f):
-        runs = [run(engine.FIXED, *setup.run_inputs(mass=mass, beta=beta, eps_bar=0.012,
+        runs = [run(layout.FIXED, *setup.run_inputs(mass=mass, beta=beta, eps_bar=0.012,
                                                     phi0_deg=tuple(p), kinematics="printed",
                                                     speed=220.0),
                     setup.criterion, **setup.tolerances) for p in phi]
@@ -77,7 +77,7 @@ def test_an_uncertainty_run_without_a_time_has_none_and_the_closed_form_predicts
     np.testing.assert_array_equal(np.isnan(out["balance_time"]), [False, False, True, True])
 
     def direct(phi):
-        return run(engine.FIXED, *setup.run_inputs(mass=0.006, beta=0.2, eps_bar=0.012,
+        return run(layout.FIXED, *setup.run_inputs(mass=0.006, beta=0.2, eps_bar=0.012,
                                                    phi0_deg=phi, kinematics="printed",
                                                    speed=220.0), setup.criterion,
                    **setup.tolerances)

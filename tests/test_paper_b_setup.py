@@ -6,7 +6,8 @@ their own)."""
 import numpy as np
 import pytest
 
-from rotorvib.models.balancer.simulate import BalanceCriterion, simulate
+from rotorvib.models.balancer.criteria import BalanceCriterion
+from rotorvib.models.balancer.simulate import simulate
 from rotorvib.papers.b.config_checks import study_problem
 from rotorvib.papers.b.setup import RUN_PARAMETERS, Setup
 from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset, grid_dataset

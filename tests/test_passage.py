@@ -72,7 +72,7 @@ def test_balls_that_cannot_move_pass_as_the_closed_form_says(setup):
     """The package's engine with ball damping so large that the balls keep their angles in the
     disk's frame through the passage: its peak bearing force and time against the closed form
     (the frozen balls' unbalance adds to the disk's), within the closed form's own error."""
-    from rotorvib.models.balancer.analysers import METRICS
+    from rotorvib.models.balancer.layout import METRICS
 
     phi0 = [40.0, 45.0]
     metrics = setup.runs([setup.run_inputs(mass=0.01, eps_bar=0.012, beta=200.0,

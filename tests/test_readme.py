@@ -8,7 +8,7 @@ import pytest
 
 from conftest import ROOT
 from rotorvib.papers.a.studies import REFERENCE as A
-from rotorvib.papers.b.setup import REFERENCE as B
+from rotorvib.papers.b.attributes import REFERENCE as B
 from rotorvib.papers.c.broadband import REFERENCE as C_BROADBAND
 from rotorvib.papers.c.studies import REFERENCE as C
 from rotorvib.pipeline.config import load_yaml

@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from rotorvib.methods.ga import minimise_many
-from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.models.balancer.layout import N_METRICS
 from rotorvib.papers.b.setup import LazyInputs, Setup
 from rotorvib.papers.b.studies import balance_study_dataset, basin_dataset
 from rotorvib.papers.b.uncertainty import INPUTS, run_case

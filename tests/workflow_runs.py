@@ -22,14 +22,15 @@ from functools import partial
 from pathlib import Path
 
 from conftest import ROOT
-from rotorvib.models.balancer import dop853, engine, settling
+from rotorvib.models.balancer import dop853, layout
+from rotorvib.models.balancer.criteria import BalanceCriterion, StopRule
 from rotorvib.models.balancer.parameters import (
     Balancer,
     SpeedProfile,
     fixed_parameters,
     fixed_state,
 )
-from rotorvib.models.balancer.simulate import BalanceCriterion, run_batch
+from rotorvib.models.balancer.simulate import run_batch
 
 BIN = Path(sys.executable).parent
 #: The reduced configuration, its outputs under results/ (tests/config/results_at_root.yaml).
@@ -159,8 +160,8 @@ def compile_the_engine() -> None:
     p = fixed_parameters(b, SpeedProfile(200.0, "runup"))[None]
     y0 = fixed_state(2, r0=1e-3, theta0=0.0, phi0=[0.5, -0.5])[None]
     for method in dop853.METHODS:
-        run_batch(engine.FIXED, p, y0, BalanceCriterion(1e-4, 1.0, 0.05, 1e-3), method=method,
-                  stop=settling.StopRule(margin=0.5, check_dt=0.02, neutral=1e-9),
+        run_batch(layout.FIXED, p, y0, BalanceCriterion(1e-4, 1.0, 0.05, 1e-3), method=method,
+                  stop=StopRule(margin=0.5, check_dt=0.02, neutral=1e-9),
                   progress=False)
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorvib.models.balancer.kinematics import profile_speed
 from rotorvib.models.balancer.parameters import Balancer, SpeedProfile
 
 
@@ -18,7 +19,7 @@ def rhs_polar_printed(t, y, b: Balancer, profile: SpeedProfile):
     n = b.n
     r, th, phi = y[0], y[1], y[2:n + 2]
     rd, thd, phid = y[n + 2], y[n + 3], y[n + 4:]
-    w, wd, _, _ = (float(v[0]) for v in profile.speed(t))
+    w, wd, _, _ = (float(v[0]) for v in profile_speed(profile, t))
     mt = b.M + n * b.m
     a = phi + w * t - th
     S, C = np.sin(a), np.cos(a)

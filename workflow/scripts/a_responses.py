@@ -7,7 +7,7 @@ import sys
 from rotorvib.methods.multiple_scales import ConstantsDiverged
 from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
-from rotorvib.papers.a.studies import responses_dataset
+from rotorvib.papers.a.responses import responses_dataset
 
 job.start(snakemake.log[0])
 p = snakemake.params

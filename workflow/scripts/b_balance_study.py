@@ -4,7 +4,7 @@ for every kinematics and initial condition."""
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.coords import grid
-from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.models.balancer.layout import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.pipeline.shards import run_study
 from rotorvib.papers.b.setup import Setup

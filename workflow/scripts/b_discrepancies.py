@@ -13,7 +13,8 @@ from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.discrepancies import hypotheses, inversions, quantities
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import Setup
 
 job.start(snakemake.log[0])
 use_threads(snakemake.threads)

@@ -5,7 +5,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 from rotorvib.paper_values import paper_values_of
 from rotorvib.io.datasets import read_dataset
-from rotorvib.models.balancer.analysers import N_METRICS
+from rotorvib.models.balancer.layout import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.uncertainty import CALIBRATION_KEY, calibrated_band, uncertainty_dataset

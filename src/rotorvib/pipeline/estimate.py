@@ -66,7 +66,7 @@ class RunCounter:
         self.kept: list[tuple[tuple, np.ndarray, np.ndarray]] = []
 
     def __call__(self, form, params, y0s, criterion, **options) -> np.ndarray:
-        from rotorvib.models.balancer.analysers import N_METRICS
+        from rotorvib.models.balancer.layout import N_METRICS
 
         batch = (form, criterion, tuple(sorted(
             (k, v) for k, v in options.items() if k not in ("progress", "balance_bounds"))))

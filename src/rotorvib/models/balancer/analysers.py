@@ -8,13 +8,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-# metrics returned by `integrate` (one row per run)
-METRICS = ("status", "n_steps", "balance_time", "balanced", "envelope_time", "envelope_balanced",
-           "force_max", "force_max_time", "force_decay_time", "force_decayed", "t_stop")
-N_METRICS = len(METRICS)
-#: column of each metric, by name
-COLUMN = {name: i for i, name in enumerate(METRICS)}
-# the same columns as compiled-in constants
+from rotorvib.models.balancer.layout import COLUMN, METRICS, N_METRICS
+
+# the metrics' columns (layout.METRICS) as compiled-in constants
 (_M_STATUS, _M_STEPS, _M_BAL_T, _M_BAL, _M_ENV_T, _M_ENV, _M_F_MAX, _M_F_MAX_T, _M_F_T, _M_F_DONE,
  _M_T_STOP) = (COLUMN[name] for name in METRICS)
 

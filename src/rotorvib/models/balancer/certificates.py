@@ -16,21 +16,22 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from rotorvib.models.balancer.criteria import StopRule
 from rotorvib.models.balancer.engine import copy_into, rhs_rotating
-from rotorvib.models.balancer.kinematics import CONSTANT
+from rotorvib.models.balancer.layout import CONSTANT
 from rotorvib.models.balancer.parameters import (SpeedProfile, rotating_parameter_rows,
                                                  total_mass_groups)
 from rotorvib.models.balancer.settling import (
     A1, A2, BALANCE_BOUND, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
     QUASI_STATIC, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
-    WEIGHT_F, WEIGHT_R, WEIGHT_V, StopRule)
+    WEIGHT_F, WEIGHT_R, WEIGHT_V)
 
 STEP = 1e-3
 
 
 @njit(cache=True, error_model="numpy")
 def linearisation(p_rot, y0):
-    """``J`` of the rotating form (parameters ``p_rot``, layout ``engine.P_ROT``, two balls) at
+    """``J`` of the rotating form (parameters ``p_rot``, layout ``layout.P_ROT``, two balls) at
     the state ``y0``, by the differences of the module docstring."""
     J = np.zeros((8, 8))
     y = np.empty(8)
@@ -124,8 +125,8 @@ def _rest_rows(fixed, groups, W, rest, rule: StopRule, *, quasi_static: bool) ->
 
 
 def _rotating_rows(fixed: np.ndarray, W: np.ndarray) -> np.ndarray:
-    """The rotating form's parameter rows (``engine.P_ROT``) of the machines of ``fixed``
-    (``engine.P_FIXED`` rows) at the constant dimensionless speeds ``W``: paper A's groups
+    """The rotating form's parameter rows (``layout.P_ROT``) of the machines of ``fixed``
+    (``layout.P_FIXED`` rows) at the constant dimensionless speeds ``W``: paper A's groups
     (:func:`~rotorvib.models.balancer.parameters.total_mass_groups`), as
     :func:`~rotorvib.models.balancer.parameters.rotating_parameters` lays them out for
     ``SpeedProfile(W)``."""

@@ -17,9 +17,9 @@ from numba import njit
 
 from rotorvib.models.balancer.analysers import metrics_row, new_analysers
 from rotorvib.models.balancer.borrowed import borrowed
-from rotorvib.models.balancer.engine import (NON_FINITE, OK, RUNNING, all_finite, cannot_step,
-                                             copy_into, initial_step, rhs, sample_into,
-                                             sampled_components, stop_status)
+from rotorvib.models.balancer.engine import (all_finite, cannot_step, copy_into, initial_step, rhs,
+                                             sample_into, sampled_components, stop_status)
+from rotorvib.models.balancer.layout import NON_FINITE, OK, RUNNING
 from rotorvib.models.balancer.settling import CHECK_EVERY
 
 DOPRI5, DOP853 = 0, 1

@@ -25,7 +25,8 @@ division, which made the integrators about 10 % slower.  Two forms of the same p
     divided by ``M_t R w_n^2`` and ``m R^2 w_n^2``.  Parameters ``P_ROT``: mu, rho, zeta, beta, n,
     Omega, T_ramp (in tau), profile.  Consistent kinematics only.
 
-Speed profiles and disk kinematics: ``kinematics``.
+Speed profiles and disk kinematics: ``kinematics``; the forms' codes, the parameter layouts and
+the status codes: ``layout`` (without numba).
 """
 
 from __future__ import annotations
@@ -37,22 +38,10 @@ from rotorvib.models.balancer.analysers import (balance_time_above, forget, metr
                                                 new_analysers, observe)
 from rotorvib.models.balancer.borrowed import borrowed
 from rotorvib.models.balancer.kinematics import disk_kinematics, speed
+from rotorvib.models.balancer.layout import (ABOVE_BOUND, FIXED, MAX_STEPS, NON_FINITE, OK,
+                                             RUNNING, STEP_UNDERFLOW)
 from rotorvib.models.balancer.settling import BALANCE_BOUND, CHECK_EVERY, settled
 
-FIXED, ROTATING = 0, 1
-
-# parameter-array layouts
-P_FIXED = ("M", "m", "R", "eps", "k", "c", "D", "n", "Omega", "T_ramp", "profile", "kinematics")
-P_ROT = ("mu", "rho", "zeta", "beta", "n", "Omega", "T_ramp", "profile")
-
-# status codes of an integration: OK and ABOVE_BOUND (stopped once its balance time was known
-# to exceed the bound its batch gave it, every metric unknown) end a run; the others are failures
-OK, STEP_UNDERFLOW, NON_FINITE, MAX_STEPS, ABOVE_BOUND = 0, 1, 2, 3, 4
-STATUS_TEXT = {OK: "ok", STEP_UNDERFLOW: "step size underflow", NON_FINITE: "non-finite state",
-               MAX_STEPS: "maximum number of steps reached",
-               ABOVE_BOUND: "stopped above its balance-time bound"}
-#: stop_status of a run that goes on
-RUNNING = -1
 
 @njit(cache=True, error_model="numpy")
 def _solve_rotor(a11, a12, a22, b1, b2):

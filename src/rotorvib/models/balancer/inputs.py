@@ -4,7 +4,7 @@ length, or a ball count that does not match the state, reads and writes past the
 array there).  Each check raises ``ValueError`` naming the argument, what it got and what is
 allowed.
 
-Parameter rows (``engine.P_FIXED``, ``engine.P_ROT``) are checked column by column against
+Parameter rows (``layout.P_FIXED``, ``layout.P_ROT``) are checked column by column against
 :data:`FIXED_COLUMNS` and :data:`ROTATING_COLUMNS`; a state row of ``n`` balls has
 ``2 (n + 2)`` entries.
 """
@@ -16,33 +16,33 @@ import numbers
 import numpy as np
 
 from rotorvib.checks import finite_array
-from rotorvib.models.balancer import engine, kinematics, limits
+from rotorvib.models.balancer import layout, limits
 
 #: Balls of a balancer at most (a state of 2 (n + 2) entries); paper A and B have two.
 MAX_BALLS = 64
 
 _POSITIVE, _NONNEGATIVE = (0.0, False), (0.0, True)
-_PROFILES = (kinematics.CONSTANT, kinematics.RUNUP)
+_PROFILES = (layout.CONSTANT, layout.RUNUP)
 
 #: Allowed values of each column of a FIXED-form parameter row: ``(minimum, inclusive)`` for a
 #: number, a tuple of codes for a flag, ``"balls"`` for the ball count.
 FIXED_COLUMNS = {"M": _POSITIVE, "m": _POSITIVE, "R": _POSITIVE, "eps": _NONNEGATIVE,
                  "k": _POSITIVE, "c": _NONNEGATIVE, "D": _NONNEGATIVE, "n": "balls",
                  "Omega": _POSITIVE, "T_ramp": _POSITIVE, "profile": _PROFILES,
-                 "kinematics": (kinematics.PRINTED, kinematics.CONSISTENT)}
+                 "kinematics": (layout.PRINTED, layout.CONSISTENT)}
 #: The same for a ROTATING-form row; ``mu = m / M_t`` lies in (0, 1).
 ROTATING_COLUMNS = {"mu": _POSITIVE, "rho": _POSITIVE, "zeta": _NONNEGATIVE,
                     "beta": _NONNEGATIVE, "n": "balls", "Omega": _POSITIVE,
                     "T_ramp": _POSITIVE, "profile": _PROFILES}
-_COLUMNS = {engine.FIXED: (engine.P_FIXED, FIXED_COLUMNS),
-            engine.ROTATING: (engine.P_ROT, ROTATING_COLUMNS)}
+_COLUMNS = {layout.FIXED: (layout.P_FIXED, FIXED_COLUMNS),
+            layout.ROTATING: (layout.P_ROT, ROTATING_COLUMNS)}
 
 
 def form(value) -> int:
-    """``value`` as a form code, ``engine.FIXED`` or ``engine.ROTATING``."""
+    """``value`` as a form code, ``layout.FIXED`` or ``layout.ROTATING``."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value not in _COLUMNS:
-        raise ValueError(f"form = {value!r}: must be engine.FIXED ({engine.FIXED}) or "
-                         f"engine.ROTATING ({engine.ROTATING})")
+        raise ValueError(f"form = {value!r}: must be layout.FIXED ({layout.FIXED}) or "
+                         f"layout.ROTATING ({layout.ROTATING})")
     return int(value)
 
 
@@ -78,8 +78,8 @@ def state_rows(form_code: int, params: np.ndarray, y0s, name: str = "y0s",
     """``y0s`` as a C-contiguous float array with one state row per parameter row, each of the
     length its row's ball count gives."""
     states = finite_array(name, y0s, shape=(len(params), None))
-    balls = params[:, engine.P_FIXED.index("n") if form_code == engine.FIXED
-                   else engine.P_ROT.index("n")]
+    balls = params[:, layout.P_FIXED.index("n") if form_code == layout.FIXED
+                   else layout.P_ROT.index("n")]
     width = 2 * (balls.astype(int) + 2)
     wrong = np.flatnonzero(width != states.shape[1])
     if wrong.size:
@@ -102,7 +102,7 @@ def fastest_rate(form_code: int, params: np.ndarray) -> np.ndarray:
     ``Omega``, the natural frequency ``sqrt(k / M_t)``, the support's damping rate ``c / M_t``
     and the balls' drag rate ``D / (m R^2)`` (FIXED); ``Omega``, 1, ``2 zeta`` and ``beta``
     (ROTATING, time in ``1 / w_n``)."""
-    if form_code == engine.FIXED:
+    if form_code == layout.FIXED:
         M, m, R, _, k, c, D, n, omega = params[:, :9].T
         mt = M + n * m
         return np.max([omega, np.sqrt(k / mt), c / mt, D / (m * R**2)], axis=0)

@@ -15,8 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-CONSTANT, RUNUP = 0, 1
-PRINTED, CONSISTENT = 0, 1
+from rotorvib.models.balancer.layout import CONSTANT, PRINTED
 
 
 @njit(cache=True, error_model="numpy")
@@ -41,3 +40,11 @@ def disk_kinematics(t, p):
     if int(p[11]) == PRINTED:
         return w * t, w + wd * t, 2.0 * wd
     return integral, w, wd
+
+
+def profile_speed(profile, t):
+    """``(w, w', w'', int w dt)`` of ``profile`` (a
+    :class:`~rotorvib.models.balancer.parameters.SpeedProfile`) at times ``t`` (vectorised)."""
+    out = np.array([speed(float(ti), profile.omega, profile.t_ramp, profile.profile_code)
+                    for ti in np.atleast_1d(t)])
+    return tuple(out.T)

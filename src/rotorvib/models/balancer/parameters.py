@@ -17,7 +17,7 @@ import numpy as np
 
 from rotorvib.checks import integer, require
 
-from rotorvib.models.balancer import kinematics
+from rotorvib.models.balancer import layout
 
 #: Balls in one race at most: a bound on the size of the state (each ball adds two variables),
 #: not a physical one; the papers have two.
@@ -157,32 +157,26 @@ class SpeedProfile:
 
     @property
     def profile_code(self) -> int:
-        return kinematics.RUNUP if self.kind == "runup" else kinematics.CONSTANT
-
-    def speed(self, t):
-        """``(w, w', w'', int w dt)`` at times ``t`` (vectorised)."""
-        out = np.array([kinematics.speed(float(ti), self.omega, self.t_ramp, self.profile_code)
-                        for ti in np.atleast_1d(t)])
-        return tuple(out.T)
+        return layout.RUNUP if self.kind == "runup" else layout.CONSTANT
 
 
 def fixed_parameters(b: Balancer, profile: SpeedProfile) -> np.ndarray:
-    """Parameter array of the FIXED form (layout ``engine.P_FIXED``)."""
+    """Parameter array of the FIXED form (layout ``layout.P_FIXED``)."""
     return fixed_parameter_rows(M=b.M, m=b.m, R=b.R, eps=b.eps, k=b.k, c=b.c, D=b.D, n=b.n,
                                 profile=profile)[0]
 
 
 def fixed_parameter_rows(*, M, m, R, eps, k, c, D, n, profile: SpeedProfile) -> np.ndarray:
-    """Parameter rows of the FIXED form (layout ``engine.P_FIXED``), one per entry of the
+    """Parameter rows of the FIXED form (layout ``layout.P_FIXED``), one per entry of the
     machines' parameters broadcast together (unchecked: the engine checks a batch's rows)."""
-    kin = kinematics.PRINTED if profile.kinematics == "printed" else kinematics.CONSISTENT
+    kin = layout.PRINTED if profile.kinematics == "printed" else layout.CONSISTENT
     columns = np.broadcast_arrays(M, m, R, eps, k, c, D, n, profile.omega, profile.t_ramp,
                                   profile.profile_code, kin)
     return np.column_stack(columns).astype(float)
 
 
 def rotating_parameters(d: Dimensionless, profile: SpeedProfile) -> np.ndarray:
-    """Parameter array of the ROTATING form (layout ``engine.P_ROT``)."""
+    """Parameter array of the ROTATING form (layout ``layout.P_ROT``)."""
     if profile.kinematics != "consistent":
         raise ValueError("the rotating-frame form exists for the consistent kinematics only")
     return rotating_parameter_rows(mu=d.mu, rho=d.rho, zeta=d.zeta, beta=d.beta, n=d.n,
@@ -191,7 +185,7 @@ def rotating_parameters(d: Dimensionless, profile: SpeedProfile) -> np.ndarray:
 
 
 def rotating_parameter_rows(*, mu, rho, zeta, beta, n, omega, t_ramp, profile_code) -> np.ndarray:
-    """Parameter rows of the ROTATING form (layout ``engine.P_ROT``), one per entry of the
+    """Parameter rows of the ROTATING form (layout ``layout.P_ROT``), one per entry of the
     groups and speeds broadcast together (unchecked: the engine checks a batch's rows)."""
     columns = np.broadcast_arrays(mu, rho, zeta, beta, n, omega, t_ramp, profile_code)
     return np.column_stack(columns).astype(float)

@@ -66,8 +66,6 @@ itself): no certificate, the run goes on to ``t_end`` as before.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numba import njit
 
@@ -81,33 +79,6 @@ from rotorvib.models.balancer.kinematics import disk_kinematics
  BALL_MOMENT, MARGIN, CHECK_EVERY, RADIUS, STIFFNESS) = range(15)
 WEIGHT_R, WEIGHT_F, WEIGHT_V, VINV_RE, VINV_IM, BALANCE_BOUND = 15, 23, 31, 39, 103, 167
 SIZE = 168
-
-@dataclass(frozen=True)
-class StopRule:
-    """When a batch run may stop before ``t_end``: bounds within ``margin`` of the thresholds,
-    checked every ``check_dt`` (s); a growth rate within ``neutral`` (in ``w_n``) of zero is a
-    neutral mode."""
-
-    margin: float
-    check_dt: float
-    neutral: float
-
-    def __post_init__(self):
-        if not 0.0 < self.margin < 1.0:
-            raise ValueError(f"margin = {self.margin!r}: must lie in (0, 1)")
-        for name in ("check_dt", "neutral"):
-            if not getattr(self, name) > 0.0:
-                raise ValueError(f"{name} = {getattr(self, name)!r}: must be > 0")
-
-    @classmethod
-    def from_config(cls, stop: dict, neutral: float) -> "StopRule":
-        """From ``paper_b.balance.stop`` and ``paper_b.marginal_growth``."""
-        return cls(margin=stop["margin"], check_dt=stop["check_dt"], neutral=neutral)
-
-    def check_every(self, sample_dt: float) -> int:
-        """Samples from one check of a run to the next."""
-        return max(1, round(self.check_dt / sample_dt))
-
 
 @njit(cache=True, error_model="numpy")
 def _wrap(a):

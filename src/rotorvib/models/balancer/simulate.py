@@ -19,17 +19,13 @@ import numpy as np
 from rotorvib.checks import finite_array, flag, instance, integer, number
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.methods.numba_cache import compile_lock, record
-from rotorvib.models.balancer import analysers, dop853, engine, inputs, settling
+from rotorvib.models.balancer import dop853, engine, inputs, layout, settling
 from rotorvib.models.balancer.certificates import certificates
+from rotorvib.models.balancer.criteria import ATOL, METHOD, RTOL, BalanceCriterion, StopRule
+from rotorvib.models.balancer.layout import metric
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
 
-#: Default tolerances, chosen from the convergence study
-#: ``python -m benchmarks.balancer --convergence`` (paper B run-up: balance time within 1e-6 s
-#: and peak force within 2e-7 of rtol = 1e-12).
-RTOL, ATOL = 1e-8, 1e-11
-#: Default method: the integrator the tolerances above were chosen for.
-METHOD = "dopri5"
 MAX_STEPS = 50_000_000
 #: Threads that a batch shares its runs out to (:func:`use_threads`): all cores by default.
 THREADS = os.cpu_count() or 1
@@ -57,51 +53,6 @@ def _first_use(integrator):
 
 
 @dataclass(frozen=True)
-class BalanceCriterion:
-    """When a run counts as balanced, and how long and how finely it is observed.
-
-    A run is balanced at the time after which the whirl radius stays below ``r_threshold``
-    (paper B, section 7) and its bearing force has decayed at the time after which
-    ``F = k r + c r'`` stays below ``f_threshold``; both are read on samples every ``sample_dt``
-    of a run that ends at ``t_end``.
-    """
-
-    r_threshold: float
-    f_threshold: float
-    t_end: float
-    sample_dt: float
-
-    def __post_init__(self):
-        for name in ("r_threshold", "f_threshold", "t_end", "sample_dt"):
-            object.__setattr__(self, name, number(name, getattr(self, name)))
-        if self.sample_dt > self.t_end:
-            raise ValueError(f"sample_dt = {self.sample_dt!r}: must not exceed t_end = "
-                             f"{self.t_end!r}")
-        inputs.samples(self.t_end, self.sample_dt)
-
-    @classmethod
-    def from_config(cls, balance: dict, k: float) -> "BalanceCriterion":
-        """From the ``balance`` config section; the force threshold is the force of a support of
-        stiffness ``k`` at the radius threshold, ``f_threshold = k r_threshold``."""
-        return cls(r_threshold=balance["r_threshold"], f_threshold=k * balance["r_threshold"],
-                   t_end=balance["t_end"], sample_dt=balance["sample_dt"])
-
-    @property
-    def n_samples(self) -> int:
-        """Number of samples ``t = 0, sample_dt, ...`` up to ``t_end``."""
-        return inputs.samples(self.t_end, self.sample_dt)
-
-    @property
-    def times(self) -> np.ndarray:
-        return np.arange(self.n_samples) * self.sample_dt
-
-
-def metric(metrics: np.ndarray, name: str) -> np.ndarray:
-    """The column ``name`` (one of ``analysers.METRICS``) of a metrics row or table."""
-    return metrics[..., analysers.COLUMN[name]]
-
-
-@dataclass(frozen=True)
 class RunResult:
     """Balance time (threshold and envelope definitions) and bearing force of one run."""
 
@@ -118,7 +69,7 @@ class RunResult:
 
     @classmethod
     def from_metrics(cls, m, t_end) -> "RunResult":
-        value = {name: float(metric(m, name)) for name in analysers.METRICS}
+        value = {name: float(metric(m, name)) for name in layout.METRICS}
         return cls(balance_time=value["balance_time"], censored=not value["balanced"],
                    envelope_time=value["envelope_time"],
                    envelope_censored=not value["envelope_balanced"],
@@ -167,8 +118,8 @@ def _checked(form, params, y0s, criterion, rtol, atol, names=("params", "y0s")):
 
 def _raise_on_failure(m):
     status = int(metric(m, "status"))
-    if status != engine.OK:
-        raise IntegrationError(f"balancer integration failed: {engine.STATUS_TEXT[status]} "
+    if status != layout.OK:
+        raise IntegrationError(f"balancer integration failed: {layout.STATUS_TEXT[status]} "
                                f"after {int(metric(m, 'n_steps'))} steps")
 
 
@@ -186,7 +137,7 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
         rtol: float = RTOL, atol: float = ATOL, method: str = METHOD, store: bool = False):
     """Integrate one run from t = 0 to ``criterion.t_end`` with ``method`` ("dopri5" or
     "dop853"); return a :class:`Trajectory` (``store=True``) or a :class:`RunResult`.
-    ``p`` is a parameter row of the form's layout (``engine.P_FIXED`` or ``engine.P_ROT``),
+    ``p`` is a parameter row of the form's layout (``layout.P_FIXED`` or ``layout.P_ROT``),
     ``y0`` the state of its ``n`` balls, ``2 (n + 2)`` entries; ``ValueError`` names an argument
     out of range (:mod:`inputs`)."""
     p, y0 = finite_array("p", p, shape=(None,)), finite_array("y0", y0, shape=(None,))
@@ -223,19 +174,19 @@ def simulate(b: Balancer, profile: SpeedProfile, phi0, t_end: float, *, r0: floa
     criterion = BalanceCriterion(r_threshold=r_threshold, t_end=t_end, sample_dt=sample_dt,
                                  f_threshold=b.k * r_threshold if f_threshold is None
                                  else f_threshold)
-    return run(engine.FIXED, fixed_parameters(b, profile), y0, criterion, store=store,
+    return run(layout.FIXED, fixed_parameters(b, profile), y0, criterion, store=store,
                **tolerances)
 
 
 def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: BalanceCriterion, *,
               rtol: float = RTOL, atol: float = ATOL, method: str = METHOD,
-              stop: settling.StopRule | None = None, balance_bounds=None, seed: int = 0,
+              stop: StopRule | None = None, balance_bounds=None, seed: int = 0,
               chunk: int = 256, progress: bool = True) -> np.ndarray:
-    """Metrics (rows of ``analysers.METRICS``, read with :func:`metric`) of many runs, on
+    """Metrics (rows of ``layout.METRICS``, read with :func:`metric`) of many runs, on
     :data:`THREADS` threads; with a ``stop`` rule (FIXED form) a run ends once its metrics are
     known (:mod:`settling`), else at ``criterion.t_end``.  With it, ``balance_bounds`` (one per
     run, ``inf`` for none) asks only whether a run's balance time exceeds its bound: a run ends
-    as soon as it is known to, with status ``engine.ABOVE_BOUND`` and every metric unknown
+    as soon as it is known to, with status ``layout.ABOVE_BOUND`` and every metric unknown
     (NaN) -- a search that only needs the times below a bound (:mod:`rotorvib.methods.ga`).
 
     Each run is one call of the compiled integrator, which releases the GIL: the threads take
@@ -247,14 +198,14 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     :data:`CERTIFICATE_CHUNK` runs at a time, so that a batch holds little more than its
     inputs and metrics. Failed runs are flagged in the ``status``
     column, not raised: see :func:`check_batch`.  ``params`` holds one parameter row per run
-    (``engine.P_FIXED`` or ``engine.P_ROT``), ``y0s`` one state row per run; every argument is
+    (``layout.P_FIXED`` or ``layout.P_ROT``), ``y0s`` one state row per run; every argument is
     checked first (:mod:`inputs`), with ``ValueError`` naming it.
     """
     c = criterion
     form, params, y0s = _checked(form, params, y0s, criterion, rtol, atol)
-    instance("stop", stop, settling.StopRule, optional=True)
+    instance("stop", stop, StopRule, optional=True)
     if balance_bounds is not None:
-        if stop is None or form != engine.FIXED:
+        if stop is None or form != layout.FIXED:
             raise ValueError("balance_bounds: needs a stop rule and the FIXED form")
         balance_bounds = np.asarray(balance_bounds, dtype=float)
         if balance_bounds.shape != (len(params),) or np.isnan(balance_bounds).any():
@@ -265,12 +216,12 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     integrate, tableau = _integrator(method)
     n = params.shape[0]
     order = np.random.default_rng(seed).permutation(n)
-    result = np.empty((n, analysers.N_METRICS))
+    result = np.empty((n, layout.N_METRICS))
     no_samples = np.empty((0, y0s.shape[1]))
 
     def stop_rows(runs):
         """The certificate rows (:mod:`settling`) of the runs ``runs`` (indices)."""
-        if stop is None or form != engine.FIXED:
+        if stop is None or form != layout.FIXED:
             return np.tile(settling.disabled(), (len(runs), 1))
         rows = certificates(params[runs], stop, c.sample_dt)
         if balance_bounds is not None:             # checked for the bound, if not to settle
@@ -309,9 +260,9 @@ def check_batch(metrics: np.ndarray) -> None:
     """Raise :class:`IntegrationError` listing the runs of a batch that failed (a run stopped
     above its balance-time bound has not failed)."""
     status = metric(metrics, "status")
-    failed = np.flatnonzero(~np.isin(status, (engine.OK, engine.ABOVE_BOUND)))
+    failed = np.flatnonzero(~np.isin(status, (layout.OK, layout.ABOVE_BOUND)))
     if failed.size:
-        kinds = {engine.STATUS_TEXT[int(s)] for s in status[failed]}
+        kinds = {layout.STATUS_TEXT[int(s)] for s in status[failed]}
         raise IntegrationError(f"{failed.size} of {len(metrics)} balancer runs failed "
                                f"({', '.join(sorted(kinds))}); first: run {failed[0]}")
 

@@ -30,7 +30,7 @@ from rotorvib.methods.continuation import (gradient, refine_turning_point, tange
                                            turning_points)
 from rotorvib.papers.b.choices import BOUNDARY_CHOICES
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta, on_boundary
-from rotorvib.papers.b.setup import dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
 from rotorvib.papers.b.stability_maps import balanced_eigenvalues, growth_rate
 
 PLANES = {"beta": "ball damping ratio beta", "m_bar": "ball/disk mass ratio m/M",

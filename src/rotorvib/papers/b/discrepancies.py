@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from rotorvib.discrepancy import Hypothesis, Inversion, invert, parameter_slips
-from rotorvib.models.balancer.simulate import metric
+from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.setup import Setup
 
 #: Parameters of the setup and of a run, with their units (for the unit slips).

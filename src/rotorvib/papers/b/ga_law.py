@@ -27,11 +27,12 @@ import xarray as xr
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.coords import label_coord, pick
 from rotorvib.io.variables import described
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
 from rotorvib.models.balancer.simulate import run
 from rotorvib.papers.b.choices import GA_LAW_CHOICES
 from rotorvib.papers.b.law import balance_time_law, slow_decay_rate
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import Setup
 
 #: neighbour of the optimum -> its factors on (beta, m) in units of the step h
 NEIGHBOURS = {"optimum": (0, 0), "beta_low": (-1, 0), "beta_high": (1, 0), "mass_high": (0, 1)}
@@ -125,7 +126,7 @@ def ga_law_dataset(setup: Setup, ga: xr.Dataset, ics: dict, beta_bounds, mass_bo
                                                                      "ic_name")))
         p, y0 = setup.run_inputs(mass=mass[idx], eps_bar=float(eps), beta=beta[idx],
                                  phi0_deg=ics[str(ic)], kinematics=str(kin))
-        tr = run(engine.FIXED, p, y0, criterion, store=True, **setup.tolerances)
+        tr = run(layout.FIXED, p, y0, criterion, store=True, **setup.tolerances)
         times, env = envelope(tr.t, tr.r, t0 + settle, width)
         if envelopes is None:
             envelopes, times_of = (np.full(shape + times.shape, np.nan) for _ in range(2))

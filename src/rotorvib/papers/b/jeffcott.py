@@ -21,9 +21,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from rotorvib.models.balancer.kinematics import profile_speed
 from rotorvib.models.balancer.parameters import Balancer, SpeedProfile
 from rotorvib.models.balancer.simulate import simulate
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import Setup
 
 #: The balls' initial angles (rad): any, their mass is negligible.
 BALLS = (0.0, np.pi)
@@ -84,7 +86,7 @@ def jeffcott_dataset(setup: Setup, *, eps_bar: float, m_bar: float, speeds, sett
           "engine": engine_steady(setup, eps_bar, m_bar, speeds, settle, dt),
           "ross": ross_steady(speeds)}
     t, r_engine, profile = engine_runup(setup, eps_bar, m_bar, t_end, dt)
-    speed = profile.speed(t)                       # (w, w', w'', int w dt) at the samples
+    speed = profile_speed(profile, t)                    # (w, w', w'', int w dt) at the samples
     r_ross = ross_runup(t, speed)
     names = {"closed_form": "closed form", "engine": "the package's engine (balls of "
              f"mass ratio {m_bar:g})", "ross": "ROSS"}

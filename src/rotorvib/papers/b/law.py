@@ -29,7 +29,8 @@ from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
 from rotorvib.methods.bands import percentile_spread
 from rotorvib.papers.b.choices import LAW_CHOICES
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.stability_maps import balanced_modes
 
 #: coordinate of a study dataset -> the run parameter it holds

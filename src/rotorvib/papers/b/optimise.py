@@ -13,10 +13,9 @@ from rotorvib.checks import number
 from rotorvib.io.coords import label_coord
 from rotorvib.io.progress import Progress
 from rotorvib.methods.optima import GAResult
-from rotorvib.models.balancer.engine import ABOVE_BOUND
-from rotorvib.models.balancer.simulate import metric
-from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, dataset_attrs,
-                                     parameter_coord)
+from rotorvib.models.balancer.layout import ABOVE_BOUND, metric
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import IC_LONG_NAME, KINEMATICS_LONG_NAME, Setup, parameter_coord
 
 
 def balance_time_objectives(setup: Setup, problems: list[dict], *, censored_penalty: float):

@@ -27,9 +27,10 @@ import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.methods.optima import ParetoFront
-from rotorvib.models.balancer.simulate import metric
+from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.choices import R_CHOICE, ZETA_CHOICE
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import Setup
 
 _claim = partial(Reproduced.claim, "B")
 

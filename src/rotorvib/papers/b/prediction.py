@@ -25,11 +25,12 @@ import xarray as xr
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
 from rotorvib.methods.bands import percentile_spread
-from rotorvib.models.balancer.analysers import METRICS
+from rotorvib.models.balancer.layout import METRICS
 from rotorvib.models.balancer.passage import passage_peak
 from rotorvib.papers.b.choices import LAW_CHOICES
 from rotorvib.papers.b.law import balance_time_law, error_text, slow_decay_rate
-from rotorvib.papers.b.setup import Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.stability_maps import growth_rate
 
 #: The closed-form law's variables in the law's dataset: (long name, units).

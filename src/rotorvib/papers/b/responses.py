@@ -7,9 +7,11 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import label_coord
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
+from rotorvib.models.balancer.kinematics import profile_speed
 from rotorvib.models.balancer.simulate import run
-from rotorvib.papers.b.setup import KINEMATICS_LONG_NAME, Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import KINEMATICS_LONG_NAME, Setup
 from rotorvib.papers.b.studies import metric_attrs
 
 
@@ -51,11 +53,11 @@ def time_response_dataset(setup: Setup, *, kinematics, runs: dict) -> xr.Dataset
             b = setup.balancer(mass=spec["m"], eps_bar=spec["eps_bar"], beta=spec["beta"])
             p, y0 = setup.run_inputs(mass=spec["m"], eps_bar=spec["eps_bar"], beta=spec["beta"],
                                      phi0_deg=spec["phi0"], kinematics=kin, speed=spec["speed"])
-            traj = run(engine.FIXED, p, y0, setup.criterion, store=True, **setup.tolerances)
+            traj = run(layout.FIXED, p, y0, setup.criterion, store=True, **setup.tolerances)
             r[i, j], force[i, j] = traj.r, traj.bearing_force(b.k, b.c)
             phi1[i, j], phi2[i, j] = np.degrees(traj.y[:, 2]), np.degrees(traj.y[:, 3])
             bal[i, j], env[i, j] = traj.result.balance_time, traj.result.envelope_time
-    speed = setup.profile("consistent").speed(t)
+    speed = profile_speed(setup.profile("consistent"), t)
     dims = ("kinematics", "run", "t")
     spec_var = {key: ("run", np.array([runs[nm][key] for nm in names], float),
                       {"long_name": long_name, "units": units})

@@ -19,16 +19,11 @@ from typing import Callable
 import numpy as np
 
 from rotorvib.io.coords import axis_coord
-from rotorvib.models.balancer import engine
+from rotorvib.models.balancer import layout
+from rotorvib.models.balancer.criteria import ATOL, METHOD, RTOL, BalanceCriterion, StopRule
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameter_rows,
                                                  fixed_parameters, fixed_state, paper_b_machine)
-from rotorvib.models.balancer.settling import StopRule
-from rotorvib.models.balancer.simulate import (ATOL, METHOD, RTOL, BalanceCriterion, check_batch,
-                                               run_batch)
-
-REFERENCE = ("Paper B: The effect of damping ratio and balls mass on the stability of automatic "
-             "ball balancer and determining their optimum values (M. Rezaee, R. Fathi, Modares "
-             "Mechanical Engineering 14(3):110-118, 2014, Persian; data/papers.yaml)")
+from rotorvib.models.balancer.simulate import check_batch, run_batch
 
 #: Parameters of one run that a study may vary or fix: long name and units of each.
 RUN_PARAMETERS = {
@@ -45,12 +40,6 @@ SYMBOLS = {"mass": ("m", " kg"), "speed": ("omega", " rad/s"), "R": ("R", " m")}
 KINEMATICS_LONG_NAME = ("disk-angle kinematics: printed (w t, as in eqs 7-9) or consistent "
                         "(int w dt)")
 IC_LONG_NAME = "initial ball angles, eq. (39)"
-
-
-def dataset_attrs(title: str, summary: str, where: str) -> dict:
-    """Global attributes of a paper B dataset; ``where`` names the figures/tables/equations."""
-    return {"title": f"Paper B: {title}", "summary": summary,
-            "references": f"{REFERENCE}; {where}"}
 
 
 def parameter_coord(name: str, values) -> dict:
@@ -177,9 +166,9 @@ class Setup:
     def runs(self, inputs, *, progress: bool = True, balance_bounds=None) -> np.ndarray:
         """Metrics of many ``(params, y0)`` runs (a list or :class:`LazyInputs`), in parallel,
         each stopped once its balance time is known to exceed its ``balance_bounds`` entry (if
-        given: :func:`run_batch`); failures raise."""
+        given: :func:`~rotorvib.models.balancer.simulate.run_batch`); failures raise."""
         params, y0s = stacked(inputs)
-        metrics = run_batch(engine.FIXED, params, y0s, self.criterion, progress=progress,
+        metrics = run_batch(layout.FIXED, params, y0s, self.criterion, progress=progress,
                             stop=self.stop, balance_bounds=balance_bounds, **self.tolerances)
         check_batch(metrics)
         return metrics

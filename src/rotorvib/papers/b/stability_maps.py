@@ -9,7 +9,7 @@ import xarray as xr
 from rotorvib.io.coords import axis_coord
 from rotorvib.models.balancer import stability
 from rotorvib.models.balancer.parameters import paper_b_groups
-from rotorvib.papers.b.setup import dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
 
 
 def _where_balanced(m_bar, eps_bar, zeta, beta, omega_bar, n: int):

@@ -14,9 +14,10 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.io.coords import axis_coord, label_coord
-from rotorvib.models.balancer.simulate import metric
+from rotorvib.models.balancer.layout import metric
+from rotorvib.papers.b.attributes import dataset_attrs
 from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, LazyInputs, Setup,
-                                     dataset_attrs, describe, parameter_coord)
+                                     describe, parameter_coord)
 
 METRIC_ATTRS = {
     "balance_time": ("balance time: r stays below the threshold afterwards (NaN if censored)", "s"),

@@ -38,9 +38,10 @@ from rotorvib.io.coords import pick
 from rotorvib.methods.bands import band_statement
 from rotorvib.methods.sensitivity import problem, sample, study_dataset
 from rotorvib.models.balancer import certificates
+from rotorvib.models.balancer.layout import metric
 from rotorvib.models.balancer.parameters import total_mass_groups
-from rotorvib.models.balancer.simulate import metric
-from rotorvib.papers.b.setup import LazyInputs, Setup, dataset_attrs
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import LazyInputs, Setup
 
 INPUTS = ("R", "zeta", "r0", "eps_tolerance", "mass_tolerance", "k_tolerance")
 #: quantity -> units; a time is NaN for a run without one, ``balanced`` is 1 for a run that

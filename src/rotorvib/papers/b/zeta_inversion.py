@@ -27,7 +27,8 @@ from rotorvib.comparison import MATCH_TOL, Margin, Reproduced
 from rotorvib.io.coords import label_coord, labels
 from rotorvib.paper_values import decimals
 from rotorvib.papers.b.choices import R_CHOICE, kinematics_choice
-from rotorvib.papers.b.setup import KINEMATICS_LONG_NAME, Setup, dataset_attrs, parameter_coord
+from rotorvib.papers.b.attributes import dataset_attrs
+from rotorvib.papers.b.setup import KINEMATICS_LONG_NAME, Setup, parameter_coord
 from rotorvib.papers.b.studies import grid_dataset
 
 #: The balance-time definitions and the run metric each reads (a force decay time is always
