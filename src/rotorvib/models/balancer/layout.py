@@ -3,8 +3,7 @@ their parameter rows, the speed profiles and disk kinematics, the statuses a run
 the columns of its metrics row (read with :func:`metric`).
 
 The compiled modules (``engine``, ``kinematics``, ``analysers``) take them from here, so that a
-job that only sets runs up or reads their metrics imports no compiler (about a sixth of a
-CPU-second a job).
+job that only sets runs up or reads their metrics imports no compiler.
 """
 
 from __future__ import annotations
