@@ -22,8 +22,8 @@ from rotorvib.models.balancer.layout import CONSTANT
 from rotorvib.models.balancer.parameters import (SpeedProfile, rotating_parameter_rows,
                                                  total_mass_groups)
 from rotorvib.models.balancer.settling import (
-    A1, A2, BALANCE_BOUND, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE, MARGIN,
-    QUASI_STATIC, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
+    A1, A2, BALANCE_BOUND, BALL_MOMENT, CHECK_EVERY, ENABLED, FORCE_FACTOR, GAIN_IM, GAIN_RE,
+    MARGIN, QUASI_STATIC, RADIUS, SIZE, STIFFNESS, T_FROM, UNBALANCE, VINV_IM, VINV_RE, W_N,
     WEIGHT_F, WEIGHT_R, WEIGHT_V)
 
 STEP = 1e-3

@@ -227,8 +227,7 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
         if balance_bounds is not None:             # checked for the bound, if not to settle
             bounded = np.isfinite(balance_bounds[runs])
             rows[bounded, settling.BALANCE_BOUND] = balance_bounds[runs][bounded]
-            rows[bounded, settling.CHECK_EVERY] = np.minimum(
-                rows[bounded, settling.CHECK_EVERY], stop.check_every(c.sample_dt))
+            rows[bounded, settling.CHECK_EVERY] = stop.check_every(c.sample_dt)
         return rows
 
     def take(runs):
