@@ -21,6 +21,7 @@ from rotorvib.papers.c.broadband import (
     added_mass,
     band_peak,
     broadband_front,
+    broadband_fronts,
     free_spring_dual,
     pick_at_mass,
     tuned_mass_floor,
@@ -148,3 +149,18 @@ def test_a_broadband_claim_inside_the_seed_spread_is_undetermined():
         "broadband_below_den_hartog"].holds) == "DEPENDS"          # holds only with k free
     assert row.margin.value == pytest.approx(0.1) and row.margin.uncertainty == pytest.approx(0.1125)
     assert claim_verdict(noisy["broadband_below_table2"].holds) == "SUPPORTED"  # 50 % below
+
+
+def test_the_fronts_of_several_seeds_are_each_seeds_own_whatever_the_workers(rotor, config):
+    """The job's searches share out its threads (forked processes): every front, in the seeds'
+    order, is the one its seed gives alone, bit for bit."""
+    bounds, seeds = config["paper_c"]["bounds"], [5, 1, 3]
+    nsga = {"pop_size": 16, "n_gen": 6}
+    alone = [broadband_front(rotor, bounds, W, **nsga, seed=s) for s in seeds]
+    for workers in (1, 2):
+        fronts = broadband_fronts(rotor, bounds, W, seeds, workers=workers, **nsga)
+        for front, own in zip(fronts, alone, strict=True):
+            np.testing.assert_array_equal(front.x, own.x)
+            np.testing.assert_array_equal(front.f, own.f)
+            assert front.n_eval == own.n_eval
+    assert not np.array_equal(alone[0].f, alone[1].f)    # the seeds give different fronts

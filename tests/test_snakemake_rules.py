@@ -32,3 +32,13 @@ def test_the_workflow_modifier_still_says_whether_a_module_has_its_own_config():
     source = inspect.getsource(WorkflowModifier.__init__)
     assert "self.is_module = is_module" in source
     assert "self.skip_configfile = config is not None" in source
+
+
+def test_the_workflow_modifier_still_names_a_modules_rules():
+    """rotorvib.pipeline.snakemake_rules.rule_name calls this method; a module's rules get the
+    prefix of ``use rule * from m as m_*`` through it (tests/test_module.py runs one)."""
+    from snakemake.modules import WorkflowModifier
+
+    method = getattr(WorkflowModifier, "modify_rulename", None)
+    assert callable(method), "snakemake.modules.WorkflowModifier.modify_rulename is gone"
+    assert tuple(inspect.signature(method).parameters) == ("self", "rulename")

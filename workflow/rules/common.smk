@@ -20,10 +20,12 @@ from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
 from rotorvib.pipeline.report import categories, entry_label, names_in, subcategory
+from rotorvib.pipeline.slurm_profile import batch_rules
 from rotorvib.pipeline.snakemake_rules import (
     add_params,
     module_config_given,
     producer,
+    rule_name,
     script_path,
     wildcards,
 )
@@ -75,7 +77,8 @@ PAPERS = sorted(
 # every paper's claims (rotorvib.comparison.Close)
 CLOSE = config["comparison"]
 # Threads of a job that shares a batch of runs out over threads (paper B's batch studies,
-# rotorvib.models.balancer.simulate): half the cores Snakemake is given, so that -j2 runs two
+# rotorvib.models.balancer.simulate) or its searches over processes (paper C's broadband
+# fronts, rotorvib.methods.forked): half the cores Snakemake is given, so that -j2 runs two
 # single-threaded jobs side by side as it always did and a larger -j hands each batch job
 # several cores (the SLURM profile sets its own with set-threads, written for each rule that
 # declares these by rotorvib.pipeline.slurm_profile). A command given no cores (--rulegraph,
@@ -84,6 +87,11 @@ try:
     BATCH_THREADS = max(1, int(workflow.cores) // 2)
 except (WorkflowError, TypeError):
     BATCH_THREADS = 1
+# The rules that declare them (found in the rule files, as the SLURM profile's are).
+BATCH_RULES = frozenset(
+    rule_name(workflow, name)
+    for name in batch_rules(WORKFLOW_ROOT / "workflow" / "rules")
+)
 # Where every output goes: results/ for the paper configuration, its own folder for another
 # (config key `results`; the reduced configuration writes to results/reduced).
 RESULTS_DIR = config["results"]
@@ -298,11 +306,11 @@ def report_entries():
 @cache
 def rule_making(path):
     """Which of ``workflow.rules`` makes ``path`` (the first that does, as
-    snakemake_rules.producer finds it), looked for once a path. Rules are only ever added
-    after the others, so the first that makes a path stays the first. Every job's input check
-    and every figure's group ask for it; looked for each time, a dry run of the reduced
-    configuration forked from a prepared Snakemake (tests/forked_snakemake.py) took 0.57 s
-    instead of 0.49 s."""
+    snakemake_rules.producer finds it; None for a file of the workflow's own), looked for once
+    a path. Rules are only ever added after the others, so the first that makes a path stays
+    the first. Every job's input check and every figure's group ask for it; looked for each
+    time, a dry run of the reduced configuration forked from a prepared Snakemake
+    (tests/forked_snakemake.py) took 0.57 s instead of 0.49 s."""
     return producer(workflow.rules, path)
 
 
@@ -340,18 +348,41 @@ def script_name(rule):
 
 
 def figure_groups():
-    """The figures of each paper grouped by the rules that make the datasets they read, in
-    declaration order: ``{(paper, the rules' names): [figure names]}``. One job draws a group
-    (figures.smk); read once the rules of the papers exist."""
+    """The figures of each paper grouped by the batch studies their datasets wait for, in
+    declaration order: ``{(paper, those rules' names): [figure names]}``. One job draws a group
+    (figures.smk); read once the rules of the papers exist. The figures that wait for no batch
+    study (datasets of seconds) are one job per paper: their start-ups, half a second each,
+    would cost more than their drawing. A figure of a batch study waits for that study only,
+    as its dataset does."""
     groups = {}
     for paper, figures in FIGURES.items():
         for name, declared in figures.items():
-            makers = {
-                rule_making(dataset(paper, d)).name
-                for d in declared["datasets"].values()
-            }
-            groups.setdefault((paper, tuple(sorted(makers))), []).append(name)
+            studies = set().union(
+                *(
+                    batch_upstream(dataset(paper, d))
+                    for d in declared["datasets"].values()
+                )
+            )
+            groups.setdefault((paper, tuple(sorted(studies))), []).append(name)
     return groups
+
+
+@cache
+def batch_upstream(path):
+    """The batch rules (``threads: BATCH_THREADS``) that ``path`` waits for: its own rule if
+    that is one, else those its rule's inputs wait for. Only a batch rule's inputs are
+    functions of its wildcards (its shards), and the walk stops there."""
+    maker = rule_making(path)
+    if maker is None:  # a file of the workflow's own
+        return frozenset()
+    if maker.name in BATCH_RULES:
+        return frozenset({maker.name})
+    if any(callable(item) for item in maker.input):
+        raise WorkflowError(
+            f"{maker.name} takes an input function, which figure_groups "
+            "cannot follow to the batch rules it waits for"
+        )
+    return frozenset().union(*(batch_upstream(str(item)) for item in maker.input))
 
 
 def figure_datasets(paper, names):

@@ -1,14 +1,15 @@
 # Every figure of every paper, driven by the FIGURES declarations of the papers' .smk files. The
-# figures of a paper whose datasets come from the same rules are drawn by one job, in one
-# process (its start-up, about half a second, is paid once): a change to those rules'
-# configuration reruns their jobs and redraws all of them in any case (but a value of one
-# wildcard alone, such as one balance study's range, redraws its group's other figures too),
-# and a figure alone is still built or redrawn by naming its file. A figure reads datasets only
-# (and the papers' values); nothing is recomputed here.
+# figures of a paper that wait for the same batch studies (threads: BATCH_THREADS) are drawn by
+# one job, in one process: its start-up, about half a second, is paid once (figure_groups). So
+# each paper's figures of datasets made in seconds, which wait for no batch study, are one job;
+# a figure of a batch study is drawn as soon as that study ends, beside the others. A change to
+# one of the quick studies redraws its paper's other quick figures too (a few seconds), and
+# naming a figure's file builds the figures of its job and the datasets they read.
+# A figure reads datasets only (and the papers' values); nothing is recomputed here.
 
 # A figure job is named for the first figure it draws (figures_b_fig8 draws Figs 8-10 and 12-14
 # and the other figures of the balance studies).
-for (_paper, _makers), _names in figure_groups().items():
+for (_paper, _studies), _names in figure_groups().items():
     _rule = figure_rule(_paper, _names[0])
     _datasets = figure_datasets(_paper, _names)
 

@@ -155,6 +155,7 @@ rule c_broadband:
         benchmarks("c_broadband")
     priority: COMPUTES
     localrule: True
+    threads: BATCH_THREADS
     params:
         rotor=C["rotor"],
         table2=C["table2"],

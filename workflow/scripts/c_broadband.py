@@ -1,4 +1,5 @@
-"""Rule c_broadband: the broadband absorber (beyond paper C), NSGA-II front and comparison."""
+"""Rule c_broadband: the broadband absorber (beyond paper C), NSGA-II front and comparison; the
+searches of its seeds share out the job's threads."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
@@ -10,7 +11,7 @@ from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, read_dataset, write_dataset
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber
 from rotorvib.models.absorber.time_response import response_times
-from rotorvib.papers.c.broadband import NoDesignAtMass, broadband_dataset, broadband_front
+from rotorvib.papers.c.broadband import NoDesignAtMass, broadband_dataset, broadband_fronts
 
 job.start(snakemake.log[0])
 producers = snakemake.params.input_producers  # each input dataset's rule and configuration
@@ -18,10 +19,10 @@ p = snakemake.params
 rotor = Rotor(**p.rotor)
 b, fr, time = p.broadband, p.grid, p.time
 band_w = np.linspace(*b["band"], b["n_band"])
-nsga = {key: value for key, value in b["nsga"].items() if key != "spread_seeds"}
-front = broadband_front(rotor, p.bounds, band_w, **nsga)
-spread = [broadband_front(rotor, p.bounds, band_w, **{**nsga, "seed": seed})
-          for seed in b["nsga"]["spread_seeds"]]
+nsga = {key: value for key, value in b["nsga"].items() if key not in ("seed", "spread_seeds")}
+front, *spread = broadband_fronts(rotor, p.bounds, band_w,
+                                  [b["nsga"]["seed"], *b["nsga"]["spread_seeds"]],
+                                  workers=snakemake.threads, **nsga)
 print(f"NSGA-II: {len(front.f)} designs on the front, {front.n_eval} evaluations",
       file=sys.stderr)
 t = response_times(rotor.omega_n, time["t_end"], time["samples_per_period"])

@@ -5,9 +5,10 @@ Snakefile can reach through ``workflow.rules``.  The workflow needs four things 
 public API gives: a rule's script path, to give the rule its code fingerprint as a parameter
 (``Rule.set_params``), and, for an input dataset, the rule that makes it and its wildcards
 (``Rule.is_producer``, ``Rule.get_wildcards``), to check on read that the dataset was made by
-that rule under this run's configuration.  And one thing of the workflow: whether it is read as
-a module given its own ``config:`` (:func:`module_config_given`), whose configuration is then
-that ``config:`` rather than the command's files.  Every such use is here;
+that rule under this run's configuration.  And two things of the workflow: whether it is read
+as a module given its own ``config:`` (:func:`module_config_given`), whose configuration is
+then that ``config:`` rather than the command's files, and the name a rule has in a module
+(:func:`rule_name`: the figure jobs are grouped by the batch rules they wait for).  Every such use is here;
 ``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so an upgrade
 breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
 objects.
@@ -37,8 +38,15 @@ def add_params(rule, **params) -> None:
 
 
 def producer(rules, path: str):
-    """The rule of ``rules`` that makes ``path``."""
-    return next(rule for rule in rules if rule.is_producer(path))
+    """The rule of ``rules`` that makes ``path``, or None for a file no rule makes (one of the
+    workflow's own, such as the papers' values)."""
+    return next((rule for rule in rules if rule.is_producer(path)), None)
+
+
+def rule_name(workflow, name: str) -> str:
+    """The name that the rule written as ``name`` has in this run: prefixed where the workflow
+    is read as another's module (``use rule * from rotorvib as rotorvib_*``)."""
+    return workflow.modifier.modify_rulename(name)
 
 
 def module_config_given(workflow) -> bool:

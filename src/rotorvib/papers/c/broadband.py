@@ -24,6 +24,7 @@ import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
+from rotorvib.methods.forked import map_forked
 from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.absorber.frequency_response import (amplitude, bare_rotor_amplitude,
                                                          dimensionless_amplitude, rotor_peak,
@@ -79,6 +80,19 @@ def broadband_front(rotor: Rotor, bounds: dict, w, **nsga) -> ParetoFront:
     lower, upper = design_bounds(bounds)
     return pareto_front(lambda x: np.column_stack([band_peak(rotor, x, w), added_mass(x)]), 2,
                         lower, upper, **nsga)
+
+
+def broadband_fronts(rotor: Rotor, bounds: dict, w, seeds, workers: int = 1,
+                     **nsga) -> list[ParetoFront]:
+    """:func:`broadband_front` for each of ``seeds`` (the same search otherwise), in order,
+    by up to ``workers`` forked processes (:func:`rotorvib.methods.forked.map_forked`): each
+    front is the one its seed gives alone, whatever the number of workers."""
+    return map_forked(partial(_front_of_seed, rotor, bounds, w, nsga), list(seeds), workers)
+
+
+def _front_of_seed(rotor: Rotor, bounds: dict, w, nsga: dict, seed: int) -> ParetoFront:
+    """:func:`broadband_front` with ``seed`` (a picklable task of :func:`broadband_fronts`)."""
+    return broadband_front(rotor, bounds, w, **nsga, seed=seed)
 
 
 class NoDesignAtMass(ValueError):
