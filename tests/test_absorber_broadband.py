@@ -1,6 +1,8 @@
 """The broadband absorber (beyond paper C): its objectives against independent routes, the
 floor of two tuned sets, and an NSGA-II front that beats Table 2 at Table 2's mass."""
 
+import logging
+import re
 import tracemalloc
 
 import numpy as np
@@ -164,3 +166,16 @@ def test_the_fronts_of_several_seeds_are_each_seeds_own_whatever_the_workers(rot
             np.testing.assert_array_equal(front.f, own.f)
             assert front.n_eval == own.n_eval
     assert not np.array_equal(alone[0].f, alone[1].f)    # the seeds give different fronts
+
+
+def test_each_seeds_search_logs_its_generations(rotor, config, caplog):
+    """A person following the job's log sees each search advance: its first and last
+    generation of the total, with the time elapsed and left."""
+    caplog.set_level(logging.INFO, logger="rotorvib.progress")
+    broadband_fronts(rotor, config["paper_c"]["bounds"], W, [7, 8], pop_size=8, n_gen=4)
+    lines = [r.getMessage() for r in caplog.records]
+    for seed in (7, 8):
+        done = [int(m.group(1)) for line in lines if (m := re.match(
+            rf"broadband NSGA-II, seed {seed}: generations: (\d+) of 4, [\d.]+ s elapsed, "
+            r"about \S+ s left$", line))]
+        assert done[0] == 1 and done[-1] == 4, lines

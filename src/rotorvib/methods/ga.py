@@ -176,11 +176,13 @@ class _Vectorised(Problem):
 
 def pareto_front(objectives: Callable[[np.ndarray], np.ndarray], n_obj: int, lower, upper, *,
                  pop_size: int, n_gen: int, seed: int, sbx_eta: float = 15.0,
-                 pm_eta: float = 20.0) -> ParetoFront:
+                 pm_eta: float = 20.0,
+                 progress: Callable[[int], None] | None = None) -> ParetoFront:
     """Minimise ``objectives(X) -> F`` (``X`` of shape ``(pop, n_var)``, ``F`` of shape
     ``(pop, n_obj)``) over the box ``[lower, upper]`` with pymoo's NSGA-II (non-dominated
     sorting and crowding distance; SBX crossover, polynomial mutation) for exactly ``n_gen``
-    generations; deterministic for a ``seed``.  Argument errors as :func:`minimise_many`."""
+    generations; deterministic for a ``seed``.  ``progress(generation)`` is called after each
+    generation.  Argument errors as :func:`minimise_many`."""
     lower, upper = _check_arguments(lower, upper, pop_size, n_gen, seed, sbx_eta, pm_eta)
     problem = _Vectorised(objectives, integer("n_obj", n_obj, 2), lower, upper)
     algorithm = NSGA2(pop_size=pop_size, crossover=SBX(eta=sbx_eta), mutation=PM(eta=pm_eta),
@@ -188,6 +190,8 @@ def pareto_front(objectives: Callable[[np.ndarray], np.ndarray], n_obj: int, low
     algorithm.setup(problem, termination=("n_gen", n_gen), seed=seed, verbose=False)
     while algorithm.has_next():
         algorithm.next()
+        if progress is not None:
+            progress(algorithm.n_gen - 1)   # pymoo counts on to the generation it runs next
     opt = algorithm.result()
     order = np.argsort(opt.F[:, 0], kind="stable")
     return ParetoFront(x=np.asarray(opt.X, float)[order], f=np.asarray(opt.F, float)[order],

@@ -23,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.progress import Progress
 from rotorvib.io.variables import described
 from rotorvib.methods.forked import map_forked
 from rotorvib.methods.optima import ParetoFront
@@ -74,7 +75,8 @@ def band_peak(rotor: Rotor, x, w) -> np.ndarray:
 
 def broadband_front(rotor: Rotor, bounds: dict, w, **nsga) -> ParetoFront:
     """NSGA-II front of (band peak of D over ``w``, added mass) within the paper's bounds;
-    ``nsga``: ``pop_size``, ``n_gen``, ``seed``, ``sbx_eta``, ``pm_eta``."""
+    ``nsga``: ``pop_size``, ``n_gen``, ``seed``, ``sbx_eta``, ``pm_eta`` (and ``progress``,
+    :func:`rotorvib.methods.ga.pareto_front`)."""
     from rotorvib.methods.ga import pareto_front  # pymoo: loaded by the search's job only
 
     lower, upper = design_bounds(bounds)
@@ -86,13 +88,16 @@ def broadband_fronts(rotor: Rotor, bounds: dict, w, seeds, workers: int = 1,
                      **nsga) -> list[ParetoFront]:
     """:func:`broadband_front` for each of ``seeds`` (the same search otherwise), in order,
     by up to ``workers`` forked processes (:func:`rotorvib.methods.forked.map_forked`): each
-    front is the one its seed gives alone, whatever the number of workers."""
+    front is the one its seed gives alone, whatever the number of workers. Each search logs
+    its generations (:class:`rotorvib.io.progress.Progress`)."""
     return map_forked(partial(_front_of_seed, rotor, bounds, w, nsga), list(seeds), workers)
 
 
 def _front_of_seed(rotor: Rotor, bounds: dict, w, nsga: dict, seed: int) -> ParetoFront:
-    """:func:`broadband_front` with ``seed`` (a picklable task of :func:`broadband_fronts`)."""
-    return broadband_front(rotor, bounds, w, **nsga, seed=seed)
+    """:func:`broadband_front` with ``seed``, its generations logged (a picklable task of
+    :func:`broadband_fronts`)."""
+    progress = Progress(f"broadband NSGA-II, seed {seed}: generations", nsga["n_gen"])
+    return broadband_front(rotor, bounds, w, **nsga, seed=seed, progress=progress)
 
 
 class NoDesignAtMass(ValueError):
