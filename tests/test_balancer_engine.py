@@ -1,7 +1,9 @@
 """The ball-balancer engine against scipy, against paper B's printed polar equations, across
 kinematic conventions and across the fixed and rotating frames."""
 
+import logging
 import os
+import re
 import subprocess
 import sys
 
@@ -222,6 +224,23 @@ def test_a_batch_on_many_threads_equals_it_on_one(method, monkeypatch):
                                  method=method, progress=True, chunk=5))
     np.testing.assert_array_equal(*batches)
     assert len(np.unique(batches[0][:, 6])) == 12
+
+
+def test_a_batchs_progress_is_logged_with_the_runs_done_of_the_total(caplog):
+    """A job's log (rotorvib.io.progress) shows the runs done of the total, from the first
+    chunk to the last, each line with the time elapsed and left."""
+    rng = np.random.default_rng(6)
+    P = np.stack([fixed_parameters(paper_b(beta=x), SpeedProfile(200.0, "runup", 0.5, "printed"))
+                  for x in rng.uniform(0.2, 1.5, 7)])
+    Y = np.stack([ic(tuple(d)) for d in rng.uniform(0, 360, (7, 2))])
+    caplog.set_level(logging.INFO, logger="rotorvib.progress")
+    run_batch(layout.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 0.5, 1e-3), chunk=2)
+    done = [int(m.group(1)) for r in caplog.records if (m := re.fullmatch(
+        r"balancer runs: (\d+) of 7, [\d.]+ s elapsed, about \S+ s left", r.getMessage()))]
+    assert done[0] == 3 and done[-1] == 7 and done == sorted(done), caplog.text
+    caplog.clear()
+    run_batch(layout.FIXED, P, Y, BalanceCriterion(R_THR, F_THR, 0.5, 1e-3), progress=False)
+    assert not caplog.records
 
 
 DOP853_CASE = dict(b=paper_b(), prof=SpeedProfile(200.0, "runup", 0.5, "printed"), deg=(40, 45))

@@ -21,7 +21,7 @@ R_band = calibrated_band(forces, [paper[CALIBRATION_KEY.format(row=row)]
                                   for row in forces.case.values],
                          kinematics=p.kinematics)
 setup = Setup.from_config(**p.setup)
-run_study(snakemake, lambda inputs: setup.runs(inputs, progress=False),
+run_study(snakemake, setup.runs,
           lambda runs: uncertainty_dataset(setup, case=p.case, ranges=u["ranges"],
                                            R_band=R_band, kinematics=p.kinematics,
                                            n_base=u["n_base"], convergence=u["convergence"],

@@ -8,7 +8,6 @@ balanced by its end is *censored*: its balance time is NaN and ``censored`` is T
 from __future__ import annotations
 
 import os
-import sys
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -17,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorvib.checks import finite_array, flag, instance, integer, number
+from rotorvib.io.progress import Progress
 from rotorvib.methods.integrate import IntegrationError, check_tolerances
 from rotorvib.methods.numba_cache import compile_lock, record
 from rotorvib.models.balancer import dop853, engine, inputs, layout, settling
@@ -194,7 +194,9 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     short runs mix, and a batch compiles nothing beyond the single run's integrator (its first
     use in a process, with the stop certificates and one run, holds the compile lock:
     :func:`_first_use`). Runs are processed in chunks of ``chunk`` so that progress can be
-    shown on stderr (in one piece without it); their stop certificates are computed
+    logged (the runs done of the total, the time elapsed and left:
+    :class:`rotorvib.io.progress.Progress`; in one piece without it); their stop certificates
+    are computed
     :data:`CERTIFICATE_CHUNK` runs at a time, so that a batch holds little more than its
     inputs and metrics. Failed runs are flagged in the ``status``
     column, not raised: see :func:`check_batch`.  ``params`` holds one parameter row per run
@@ -239,6 +241,7 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     with _first_use(integrate):
         take(zip(order[:1], stop_rows(order[:1])))
     chunk = chunk if progress else n
+    report = Progress("balancer runs", n) if progress and n > chunk else None
     with ThreadPoolExecutor(THREADS) as pool:
         for block in range(1, n, CERTIFICATE_CHUNK):
             runs = order[block:block + CERTIFICATE_CHUNK]
@@ -246,12 +249,8 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
             for start in range(0, len(runs), chunk):
                 shared = iter(zip(runs[start:start + chunk], stops[start:start + chunk]))
                 list(pool.map(take, [shared] * THREADS))   # each thread takes the next run
-                if progress and n > chunk:
-                    done = block + min(start + chunk, len(runs))
-                    print(f"\rbalancer runs: {done}/{n} ({100 * done / n:.0f} %)", end="",
-                          file=sys.stderr, flush=True)
-    if progress and n > chunk:
-        print(file=sys.stderr)
+                if report is not None:
+                    report(block + min(start + chunk, len(runs)))
     return result
 
 
