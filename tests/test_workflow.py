@@ -242,6 +242,22 @@ def test_the_reduced_configuration_writes_to_its_own_folder():
         p for p in outputs if not p.startswith("results/reduced/")][:5]
 
 
+@pytest.mark.parametrize("log", ["b_pareto_printed.log", "c_broadband.log"])
+def test_the_searches_logs_show_their_generations_advancing(run_dir, log):
+    """The Pareto study's and the broadband absorber's searches log their generations too
+    (each of the broadband's seeds its own): timed lines from the first generation to the last
+    of the total, in order."""
+    text = (run_dir / "results/logs" / log).read_text()
+    found = re.findall(r"^\d\d:\d\d:\d\d (.*generations): (\d+) of (\d+), [\d.]+ s elapsed, "
+                       r"about \S+ s left$", text, re.M)
+    searches = {what for what, _, _ in found}
+    assert len(searches) == (5 if log == "c_broadband.log" else 1), text
+    for search in searches:
+        done = [int(d) for what, d, _ in found if what == search]
+        total = {int(t) for what, _, t in found if what == search}
+        assert done[0] == 1 and total == {done[-1]} and done == sorted(done), text
+
+
 def test_the_gas_log_shows_its_generations_advancing(run_dir):
     """Paper B's GA, the longest job, writes its progress to its log while it runs: each line
     timed, with the generation of the total, the time elapsed and an estimate of what is left."""

@@ -26,6 +26,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.progress import Progress
 from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.choices import R_CHOICE, ZETA_CHOICE
@@ -77,7 +78,8 @@ def pareto_dataset(setup: Setup, *, kinematics: str, eps_bar: float, speed: floa
                    beta_bounds, mass_bounds, positions: int, seed: int, pop_size: int,
                    n_gen: int, censored_penalty: float, paper_designs) -> xr.Dataset:
     """The NSGA-II front over the box ``beta_bounds x mass_bounds`` and the paper's designs
-    ``[(beta, m), ...]`` (Table 2's rows) on the same objectives."""
+    ``[(beta, m), ...]`` (Table 2's rows) on the same objectives; the search's generations are
+    logged (:class:`rotorvib.io.progress.Progress`)."""
     from rotorvib.methods.ga import pareto_front  # pymoo: loaded by the search's job only
 
     phi = initial_positions(positions, seed)
@@ -85,7 +87,8 @@ def pareto_dataset(setup: Setup, *, kinematics: str, eps_bar: float, speed: floa
     objectives = robust_objectives(runs, censored_penalty * setup.criterion.t_end)
     front: ParetoFront = pareto_front(objectives, 2, [beta_bounds[0], mass_bounds[0]],
                                       [beta_bounds[1], mass_bounds[1]], pop_size=pop_size,
-                                      n_gen=n_gen, seed=seed)
+                                      n_gen=n_gen, seed=seed,
+                                      progress=Progress("NSGA-II generations", n_gen))
     front_times, _ = runs(front.x)          # the front's runs again, censored ones as NaN
     designs = np.asarray(paper_designs, float)
     design_times, design_forces = runs(designs)
