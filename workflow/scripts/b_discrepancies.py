@@ -11,6 +11,7 @@ from rotorvib.reproduced_csv import read_reproduced
 from rotorvib.discrepancy import misses, to_dataset
 from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
+from rotorvib.io.progress import Progress
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.discrepancies import hypotheses, inversions, quantities
 from rotorvib.papers.b.attributes import dataset_attrs
@@ -29,11 +30,15 @@ m_opt = {int(r.quantity[len(prefix):]): r.reproduced for r in reproduced
 analysed = [q for q in quantities(b, m_opt) if q.name in missed]
 memo = {}  # runs made once, whichever hypothesis or inversion asks for them again
 baselines, found = hypotheses(setup, analysed, b["kinematics"], p.parameters, memo)
-inverted = [inv for q in analysed if missed[q.name][1] == "MAJOR"
-            for inv in inversions(setup, q, missed[q.name][0], b["kinematics"][0], p.parameters,
-                                  p.inversion["range"], p.inversion["n_scan"], memo)]
-for inv in inverted:
-    print(f"{inv.quantity}: {inv.text()}", file=sys.stderr)
+major = [q for q in analysed if missed[q.name][1] == "MAJOR"]
+progress = Progress("inversions of the quantities missed by more than 10 %", len(major))
+inverted = []
+for done, q in enumerate(major, 1):
+    for inv in inversions(setup, q, missed[q.name][0], b["kinematics"][0], p.parameters,
+                          p.inversion["range"], p.inversion["n_scan"], memo):
+        print(f"{inv.quantity}: {inv.text()}", file=sys.stderr)
+        inverted.append(inv)
+    progress(done, q.name)
 ds = to_dataset(baselines, found, inverted, dataset_attrs(
     "discrepancy analysis", "The printed numbers the reproduction misses by more than 1 %, "
     "recomputed under other definitions, kinematics and parameter slips, and the parameter "
