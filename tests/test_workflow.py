@@ -146,10 +146,9 @@ def test_malformed_config_stops_before_any_job(run_dir, tmp_path):
 
 
 def _figure_job_error(work: Path, *args) -> str:
-    """Force the job drawing paper C's Fig 6 (from the mass-ratio dataset; paper C's one figure
-    job, for none of its figures waits for a batch study but the broadband one) alone; return
-    its log (it must fail), which the console shows too (the default profile's
-    show-failed-logs)."""
+    """Force the job drawing paper C's Fig 6 (from the mass-ratio dataset; the job of paper C's
+    figures that wait for no batch study, named for Fig 3) alone; return its log (it must
+    fail), which the console shows too (the default profile's show-failed-logs)."""
     run = snakemake(work, "-j1", "-f", "results/paper_c/figures/fig6.png", *REDUCED, *args,
                     check=False)
     assert run.returncode != 0, run.stdout

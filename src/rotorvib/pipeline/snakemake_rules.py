@@ -8,9 +8,9 @@ public API gives: a rule's script path, to give the rule its code fingerprint as
 that rule under this run's configuration.  And two things of the workflow: whether it is read
 as a module given its own ``config:`` (:func:`module_config_given`), whose configuration is
 then that ``config:`` rather than the command's files, and the name a rule has in a module
-(:func:`rule_name`: the figure jobs are grouped by the batch rules they wait for).  Every such use is here;
-``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so an upgrade
-breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
+(:func:`rule_name`: the figure jobs are grouped by the batch rules they wait for).  Every such
+use is here; ``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so
+an upgrade breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
 objects.
 """
 

@@ -196,10 +196,9 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
     :func:`_first_use`). Runs are processed in chunks of ``chunk`` so that progress can be
     logged (the runs done of the total, the time elapsed and left:
     :class:`rotorvib.io.progress.Progress`; in one piece without it); their stop certificates
-    are computed
-    :data:`CERTIFICATE_CHUNK` runs at a time, so that a batch holds little more than its
-    inputs and metrics. Failed runs are flagged in the ``status``
-    column, not raised: see :func:`check_batch`.  ``params`` holds one parameter row per run
+    are computed :data:`CERTIFICATE_CHUNK` runs at a time, so that a batch holds little more
+    than its inputs and metrics. Failed runs are flagged in the ``status`` column, not raised:
+    see :func:`check_batch`.  ``params`` holds one parameter row per run
     (``layout.P_FIXED`` or ``layout.P_ROT``), ``y0s`` one state row per run; every argument is
     checked first (:mod:`inputs`), with ``ValueError`` naming it.
     """
