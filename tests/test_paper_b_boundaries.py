@@ -6,7 +6,13 @@ import pytest
 import sympy as sp
 
 from rotorvib.models.balancer import equations, stability
-from rotorvib.papers.b.boundaries import boundary_dataset, boundary_rows
+from rotorvib.papers.b.boundaries import (
+    approach_limit,
+    boundary_dataset,
+    boundary_rows,
+    exact_onset,
+    onset,
+)
 from rotorvib.papers.b.boundary_limits import approach_coefficient, lowest_beta
 from rotorvib.papers.b.stability_maps import growth_rate, stability_dataset
 
@@ -77,6 +83,41 @@ def test_onset_tends_to_the_critical_speed_as_one_over_beta(beta_plane):
     assert 0 < excess < 1e-3
     assert excess * float(top.beta) == pytest.approx(a, rel=1e-2)
     assert float(top.frequency) == pytest.approx(0.466 / float(top.beta), rel=0.05)
+
+
+def test_the_exact_onset_is_the_eigenvalues_onset_and_the_roots_cross_there():
+    """At beta = 1e3, where doubles still resolve the growth rate, the onset by Routh's
+    criterion in 50 digits is the eigenvalues' onset (Brent in doubles) within 1e-11; at
+    beta = 1e6, where they do not, the roots of the characteristic polynomial (mpmath's
+    polyroots, another method) have their largest real part change sign across it."""
+    import mpmath
+
+    fixed = {k: v for k, v in BASE.items() if k != "beta"}
+    exact = exact_onset(fixed, 1e3, 2, digits=50)
+    assert float(exact) == pytest.approx(onset("beta", fixed, 1e3, 50.0, 2, 20000), abs=1e-11)
+    beta = 1e6
+    at = exact_onset(fixed, beta, 2, digits=50)
+    with mpmath.workdps(50):
+        s = mpmath.sqrt(1 + 2 * mpmath.mpf(fixed["m_bar"]))
+
+        def growth(omega):
+            coefficients = stability.exact_characteristic_coefficients(
+                fixed["m_bar"] / s**2, mpmath.mpf(fixed["m_bar"]) / fixed["eps_bar"],
+                fixed["zeta"] / s, beta * s, omega * s)
+            return max(mpmath.re(r) for r in mpmath.polyroots(coefficients, maxsteps=200,
+                                                              extraprec=200))
+
+        assert growth(at - mpmath.mpf(10) ** -30) > 0 > growth(at + mpmath.mpf(10) ** -30)
+
+
+def test_the_asymptote_does_not_depend_on_the_arithmetic():
+    """a from onsets in 50 and in 70 digits agree within 1e-12, far inside its error bound
+    (about 1e-9), which is far inside the six digits the comparison prints."""
+    fixed = {k: v for k, v in BASE.items() if k != "beta"}
+    a, error = approach_limit(fixed, 2)
+    a70, _ = approach_limit(fixed, 2, digits=70)
+    assert abs(a - a70) < 1e-12 and 1e-11 < error < 1e-8
+    assert round(a, 6) == round(a + error, 6) == round(a - error, 6)
 
 
 def test_least_beta_balances_nowhere_below_and_somewhere_above(beta_plane):

@@ -21,6 +21,24 @@ def test_routh_decides_as_the_roots_do_on_random_polynomials():
         assert routh.stable(coefficients) == bool(np.all(roots.real < 0)), roots
 
 
+def test_the_array_in_multiple_precision_is_the_array_in_doubles():
+    """``dtype=object`` with ``mpmath.mpf`` coefficients: the same first column to 1e-12 as in
+    doubles (random stable and unstable degree-8 polynomials), and the same decision."""
+    import mpmath
+
+    rng = np.random.default_rng(11)
+    with mpmath.workdps(40):
+        for _ in range(50):
+            roots = np.concatenate([r := rng.normal(size=4) + 1j * rng.normal(size=4), r.conj()])
+            coefficients = np.poly(roots).real
+            exact = routh.first_column([mpmath.mpf(c) for c in coefficients], dtype=object)
+            assert isinstance(exact[-1], mpmath.mpf)
+            np.testing.assert_allclose(exact.astype(float), routh.first_column(coefficients),
+                                       rtol=1e-12)
+            assert routh.stable([mpmath.mpf(c) for c in coefficients], dtype=object) == \
+                routh.stable(coefficients)
+
+
 def test_a_root_on_the_imaginary_axis_is_not_stable():
     assert not routh.stable([1.0, 0.0, 1.0])                   # s^2 + 1: roots +/- i
     assert not routh.stable([1.0, 2.0, 0.0])                   # s (s + 2): a root at 0

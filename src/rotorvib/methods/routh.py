@@ -26,17 +26,20 @@ import numpy as np
 EIGENVALUE_OPERATIONS_PER_N3 = 10
 
 
-def first_column(coefficients) -> np.ndarray:
+def first_column(coefficients, dtype=float) -> np.ndarray:
     """The first column of the Routh array of each polynomial (coefficients highest power
-    first along the last axis), shape ``(..., n + 1)``; NaN or infinite past a zero entry."""
-    a = np.asarray(coefficients, dtype=float)
+    first along the last axis), shape ``(..., n + 1)``; NaN or infinite past a zero entry.
+    ``dtype=object`` keeps the coefficients' own numbers (``mpmath.mpf``: the array in their
+    precision)."""
+    a = np.asarray(coefficients, dtype=dtype)
     n = a.shape[-1] - 1
     if n < 1:
         raise ValueError(f"a polynomial of degree >= 1 is needed, not {n}")
     width = n // 2 + 1
 
     def padded(row):
-        return np.concatenate([row, np.zeros(row.shape[:-1] + (width - row.shape[-1],))], -1)
+        zeros = np.zeros(row.shape[:-1] + (width - row.shape[-1],), dtype=dtype)
+        return np.concatenate([row, zeros], -1)
 
     above, row = padded(a[..., 0::2]), padded(a[..., 1::2])
     column = [above[..., 0], row[..., 0]]
@@ -49,9 +52,10 @@ def first_column(coefficients) -> np.ndarray:
     return np.stack(column, axis=-1)
 
 
-def stable(coefficients) -> np.ndarray:
-    """True where every root of the polynomial has a negative real part (module docstring)."""
-    column = first_column(coefficients)
+def stable(coefficients, dtype=float) -> np.ndarray:
+    """True where every root of the polynomial has a negative real part (module docstring);
+    ``dtype`` as in :func:`first_column`."""
+    column = first_column(coefficients, dtype)
     return np.all(column * np.sign(column[..., :1]) > 0, axis=-1)
 
 

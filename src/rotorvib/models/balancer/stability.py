@@ -112,6 +112,14 @@ def characteristic_coefficients(mu, rho, zeta, beta, omega) -> np.ndarray:
                      for c in _coefficient_function()(*values)], axis=-1)
 
 
+def exact_characteristic_coefficients(mu, rho, zeta, beta, omega) -> list:
+    """The coefficients of :func:`characteristic_coefficients` at one point, computed in the
+    arithmetic of the numbers given (``mpmath.mpf``: in their precision; the generated code is
+    the polynomial's own sums and products).  The groups must lie in :func:`groups`' domain:
+    the caller checks them."""
+    return list(_coefficient_function()(mu, rho, zeta, beta, omega))
+
+
 def polynomial_roots(mu, rho, zeta, beta, omega) -> np.ndarray:
     """The eight roots of ``det(lambda^2 M + lambda C + K) = 0`` (the multiple-scales
     eigenvalue problem of the 4x4 lambda-matrix, paper A eqs 23-33), through the symbolic

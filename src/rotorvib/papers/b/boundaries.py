@@ -26,6 +26,7 @@ import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
+from rotorvib.models.balancer import stability
 from rotorvib.methods.continuation import (gradient, refine_turning_point, tangent, trace,
                                            turning_points)
 from rotorvib.papers.b.choices import BOUNDARY_CHOICES
@@ -117,22 +118,67 @@ def onset(plane: str, fixed: dict, p: float, omega_max: float, n: int, samples: 
     return edges[0]
 
 
-def approach_limit(fixed: dict, n: int, *, omega_max: float, samples: int,
-                   betas=(1e3, 1e4, 1e5)) -> tuple[float, float]:
+#: The beta of the onsets from which the asymptote ``a`` is extrapolated, and the digits of
+#: their arithmetic (:func:`approach_limit`).
+ASYMPTOTE_BETAS, ASYMPTOTE_DIGITS = (1e5, 1e6, 1e7), 50
+_ASYMPTOTE_METHOD = (f"onsets in {ASYMPTOTE_DIGITS}-digit arithmetic at beta = "
+                     + ", ".join(f"{b:.0e}".replace("+0", "") for b in ASYMPTOTE_BETAS))
+
+
+def exact_onset(fixed: dict, beta: float, n: int, *, digits: int):
+    """The onset of stability just above the critical speed ``omega_c`` at a large ``beta``,
+    as an ``mpmath.mpf`` good to about ``digits - 10`` digits: bisection between ``omega_c``
+    and ``omega_c + 10 / beta`` on Routh's criterion (:mod:`rotorvib.methods.routh`) for the
+    characteristic polynomial, its coefficients evaluated in ``digits``-digit arithmetic from
+    paper B's groups (eq. 25: ``s = sqrt(1 + n m_bar)``, ``mu = m_bar / s^2``,
+    ``rho = m_bar / eps_bar``, ``zeta / s``, ``beta s``, ``omega_bar s``).  No eigenvalue and no
+    BLAS call: the result is the same on every machine, where eigenvalues in double precision
+    lose the growth rate near ``omega_c`` (about 1e-11 at ``beta = 1e6``) in their round-off.
+    ``ValueError`` if the state is not unstable just above ``omega_c`` and stable at the
+    bracket's top."""
+    import mpmath
+
+    from rotorvib.methods import routh
+
+    with mpmath.workdps(digits):
+        m_bar, eps_bar, zeta = (mpmath.mpf(fixed[k]) for k in ("m_bar", "eps_bar", "zeta"))
+        s = mpmath.sqrt(1 + n * m_bar)
+
+        def stable(omega_bar):
+            coefficients = stability.exact_characteristic_coefficients(
+                m_bar / s**2, m_bar / eps_bar, zeta / s, mpmath.mpf(beta) * s, omega_bar * s)
+            return bool(routh.stable(coefficients, dtype=object))
+
+        low, high = 1 / s, 1 / s + mpmath.mpf(10) / beta
+        if stable(low + mpmath.mpf(10) ** (10 - digits)) or not stable(high):
+            raise ValueError(f"at beta = {beta:g} the balanced state does not turn stable "
+                             "between the critical speed and 10 / beta above it")
+        while high - low > mpmath.mpf(10) ** (10 - digits):
+            middle = (low + high) / 2
+            low, high = (low, middle) if stable(middle) else (middle, high)
+        return (low + high) / 2
+
+
+def approach_limit(fixed: dict, n: int, *, betas=ASYMPTOTE_BETAS,
+                   digits: int = ASYMPTOTE_DIGITS) -> tuple[float, float]:
     """``a = lim beta (omega_onset - omega_c)`` as ``beta -> inf`` (``omega_c`` the critical
-    speed ``1 / sqrt(1 + n m_bar)``): ``beta (onset - omega_c)`` at ``betas`` (exact onsets,
-    :func:`onset`), extrapolated as ``a + b / beta`` from the last two; the error bound is its
-    distance to the extrapolation from the first two.  Beyond ``beta = 1e5`` the growth rate
-    near the critical speed (about 1e-11 at 1e6) is lost in the eigenvalues' round-off."""
-    critical = 1 / np.sqrt(1 + n * fixed["m_bar"])
-    scaled = [b * (onset("beta", fixed, b, omega_max, n, samples) - critical) for b in betas]
+    speed ``1 / sqrt(1 + n m_bar)``): ``beta (onset - omega_c)`` at ``betas`` (onsets in
+    ``digits``-digit arithmetic, :func:`exact_onset`), extrapolated as ``a + b / beta`` from the
+    last two; the error bound is its distance to the extrapolation from the first two.  Every
+    step is exact to far below that bound, so ``a`` is the same on every machine."""
+    import mpmath
 
-    def extrapolate(i):
-        (b1, b2), (a1, a2) = betas[i:i + 2], scaled[i:i + 2]
-        return (b2 * a2 - b1 * a1) / (b2 - b1)
+    with mpmath.workdps(digits):
+        critical = 1 / mpmath.sqrt(1 + n * mpmath.mpf(fixed["m_bar"]))
+        scaled = [mpmath.mpf(b) * (exact_onset(fixed, b, n, digits=digits) - critical)
+                  for b in betas]
 
-    a = extrapolate(len(betas) - 2)
-    return float(a), float(abs(a - extrapolate(len(betas) - 3)))
+        def extrapolate(i):
+            (b1, b2), (a1, a2) = betas[i:i + 2], scaled[i:i + 2]
+            return (b2 * a2 - b1 * a1) / (b2 - b1)
+
+        a = extrapolate(len(betas) - 2)
+        return float(a), float(abs(a - extrapolate(len(betas) - 3)))
 
 
 def _branches(plane, fixed, z0, *, bounds, step, tol, neutral, n, max_branches=4,
@@ -196,8 +242,8 @@ BOUNDARY_VARIABLES = {
                     "1"),
     "critical_speed": ("undamped critical speed of disk and balls, sqrt(M/(M + n m)) "
                        "(omega_bar)", "1"),
-    "asymptote_a": ("a = lim beta (omega_onset - critical speed) as beta grows, from exact "
-                    "onsets at beta = 1e3, 1e4, 1e5 extrapolated", "1"),
+    "asymptote_a": ("a = lim beta (omega_onset - critical speed) as beta grows, extrapolated "
+                    f"from {_ASYMPTOTE_METHOD}", "1"),
     "asymptote_error": ("error bound of a: the two extrapolations apart", "1"),
 }
 
@@ -270,8 +316,7 @@ def boundary_dataset(plane: str, *, fixed: dict, p_range, start: float, omega_ma
             add(np.array([top, edge]), (-1.0,), windows)
     points, tangents, crossing, others, error, branch, curve_of = (
         np.concatenate(c) for c in zip(*parts))
-    limit = (approach_limit(fixed, n, omega_max=omega_max, samples=window_samples)
-             if plane == "beta" else None)
+    limit = approach_limit(fixed, n) if plane == "beta" else None
     turns = {name: [refine_turning_point(TrackedEigenvalue(plane, fixed, n, crossing[i]),
                                          points[i], axis=0 if name == plane else 1)
                     for i in idx] for name, idx in folds.items()}
@@ -338,8 +383,8 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
     margin = (Margin(worst_other, error, "omega_bar", "continuation; uncertainty: the largest "
                      "speed error bound on the curve") if worst_other < 0 else
               Margin(a, a_error, "beta x omega_bar", "a = lim beta (omega_onset - omega_c), "
-                     "extrapolated from exact onsets at beta = 1e3, 1e4, 1e5; uncertainty: two "
-                     "extrapolations apart"))
+                     f"extrapolated from {_ASYMPTOTE_METHOD}; uncertainty: two extrapolations "
+                     "apart"))
     return [
         Reproduced.claim(
             "B", "boundary_above_critical", margin,
