@@ -105,7 +105,8 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if len(args.kernels) != 2 or args.kernels[0] == args.kernels[1]:
         parser.error("give two different kernels, e.g. SkylakeX Haswell")
-    folder = ROOT / "results/kernels"
+    os.chdir(ROOT)                 # the configuration's results folder is the repository's
+    folder = Path("results/kernels")
     if not args.reuse:
         for kernel in args.kernels:
             run = run_reduced(folder, kernel, ["-j2"],

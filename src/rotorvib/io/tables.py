@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import math
 from pathlib import Path
 
 
@@ -42,3 +43,12 @@ def write_table(rows: list[dict], csv_path: str | Path, md_path: str | Path, *, 
             cells.update(markdown_cells(row))
         lines.append("| " + " | ".join(markdown_cell(cells[k]) for k in columns) + " |")
     Path(md_path).write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def order_bound(x: float) -> str:
+    """A round-off-sized quantity as the power of ten at or above it (``1.9e-15`` ->
+    ``"1e-14"``): what it bounds, without the digits that move with the machine's arithmetic
+    (the BLAS kernel, the order of a sum); ``"0"`` for 0."""
+    if not math.isfinite(x) or x < 0:
+        raise ValueError(f"a bound must be finite and >= 0, not {x!r}")
+    return "0" if x == 0 else f"{10.0 ** math.ceil(math.log10(x)):.0e}"

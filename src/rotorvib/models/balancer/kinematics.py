@@ -42,6 +42,15 @@ def disk_kinematics(t, p):
     return integral, w, wd
 
 
+@njit(cache=True, error_model="numpy")
+def disk_kinematics_on(t, p):
+    """:func:`disk_kinematics` at each time of the array ``t``: shape ``(3, t.size)``."""
+    out = np.empty((3, t.size))
+    for i in range(t.size):
+        out[0, i], out[1, i], out[2, i] = disk_kinematics(t[i], p)
+    return out
+
+
 def profile_speed(profile, t):
     """``(w, w', w'', int w dt)`` of ``profile`` (a
     :class:`~rotorvib.models.balancer.parameters.SpeedProfile`) at times ``t`` (vectorised)."""

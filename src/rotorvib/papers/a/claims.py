@@ -9,6 +9,7 @@ import xarray as xr
 
 from rotorvib.choices import Close
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.tables import order_bound
 from rotorvib.methods import routh
 
 PAPER = "A"
@@ -167,7 +168,7 @@ def reproduce(*, resp: xr.Dataset, region: xr.Dataset, err: xr.Dataset, case_bet
     growth_gap = float(np.max(np.abs(region.growth_mms - region.growth_lyapunov)))
     rows.append(_row("stability_boundary_mms_vs_lyapunov", gap,
                      f"largest difference of the critical speed over zeta and beta on the grid; "
-                     f"growth rates differ by at most {growth_gap:.1e}: both methods solve the "
+                     f"growth rates differ by at most {order_bound(growth_gap)}: both methods solve the "
                      "same eigenvalue problem (roots of the 4x4 lambda-matrix against the 8x8 "
                      "Jacobian), computed through separate code paths"))
     rows.append(_row("mms1_error_slope", float(err.slope_one_term),
@@ -218,7 +219,7 @@ def reproduce(*, resp: xr.Dataset, region: xr.Dataset, err: xr.Dataset, case_bet
                        f"the stable sets of the two methods "
                        f"{'coincide' if np.array_equal(mms, lyap) else 'differ'} on every grid "
                        f"point ({mms.size} points); their growth rates differ by at most "
-                       f"{growth_gap:.1e}. True by construction: both are the spectrum of the "
+                       f"{order_bound(growth_gap)}. True by construction: both are the spectrum of the "
                        "same Jacobian (roots of the 4x4 lambda-matrix, eigenvalues of the 8x8), "
                        "so the row checks two code paths, not a property of the balancer",
                        choices=(GRID,)))

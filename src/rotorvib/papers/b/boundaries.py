@@ -25,6 +25,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison import Margin, Reproduced
+from rotorvib.io.tables import order_bound
 from rotorvib.io.variables import described
 from rotorvib.models.balancer import stability
 from rotorvib.methods.continuation import (gradient, refine_turning_point, tangent, trace,
@@ -361,7 +362,8 @@ def boundary_rows(planes: dict[str, xr.Dataset]) -> list[Reproduced]:
     fitted, top_spread = approach_coefficient(beta)
     a, a_error = float(beta.asymptote_a), float(beta.asymptote_error)
     folds = beta.fold_omega_bar.values
-    extremes = ", ".join(f"{w:.6f} at beta = {b:.6g} (+/- {e:.1e} in (log10 beta, omega_bar), "
+    extremes = ", ".join(f"{w:.6f} at beta = {b:.6g} (+/- {order_bound(e)} in (log10 beta, "
+                         "omega_bar), "
                          "located by Re lambda = 0 and d Re lambda / d beta = 0)"
                          for w, b, e in zip(beta.turn_omega_bar_omega_bar.values,
                                             beta.turn_omega_bar_beta.values,

@@ -6,8 +6,9 @@ The balance-time law of :mod:`rotorvib.papers.b.law`,
     t_b = t_pk + ln(F_pk / (k r_thr)) / sigma,
 
 takes the passage's peak bearing force ``F_pk`` and its time ``t_pk`` from an integration.
-Here both come in closed form from the rotor's passage through its critical speed with the
-balls held at their initial angles (:mod:`rotorvib.models.balancer.passage`), and ``sigma``
+Here both come from the rotor's passage through its critical speed with the balls held at
+their initial angles, exact for such balls by Duhamel's integral of the rotor's linear
+equation (:mod:`rotorvib.models.balancer.passage`), and ``sigma``
 from the linearised balanced state, as in the law: no equation of motion is integrated.
 :func:`closed_form_law` evaluates it on every balanced run of the law's dataset;
 :func:`design_rule` searches a grid of ball masses and damping ratios for the least mean
@@ -35,9 +36,10 @@ from rotorvib.papers.b.stability_maps import growth_rate
 
 #: The closed-form law's variables in the law's dataset: (long name, units).
 CLOSED_FORM_VARIABLES = {
-    "t_peak_closed": ("time of the peak whirl of the critical-speed passage, closed form "
-                      "(balls at their initial angles)", "s"),
-    "force_peak_closed": ("peak bearing force of the critical-speed passage, closed form", "N"),
+    "t_peak_closed": ("time of the peak whirl of the critical-speed passage, balls held at "
+                      "their initial angles (Duhamel's integral, no integration)", "s"),
+    "force_peak_closed": ("peak bearing force of the critical-speed passage, balls held at "
+                          "their initial angles", "N"),
     "predicted_closed": ("balance time by the law with the closed-form passage (no "
                          "integration)", "s"),
     "relative_error_closed": ("relative error of the closed-form law, (law - integration) / "
@@ -49,9 +51,10 @@ def passage(setup: Setup, *, mass, eps_bar, phi0_deg, kinematics, speed=None, R=
             zeta=None):
     """The closed-form critical-speed passage of one balancer (its ball damping plays no part:
     the balls are held at ``phi0_deg``, shape ``(..., balls)``), from the rotor's initial
-    whirl ``setup.r0``."""
+    whirl (eq. 36: from rest at ``setup.r0`` in the direction ``setup.theta0``)."""
     b = setup.balancer(mass=mass, eps_bar=eps_bar, beta=0.0, R=R, zeta=zeta)
-    return passage_peak(b, setup.profile(kinematics, speed), np.radians(phi0_deg), setup.r0)
+    return passage_peak(b, setup.profile(kinematics, speed), np.radians(phi0_deg),
+                        setup.r0 * np.exp(1j * setup.theta0))
 
 
 def closed_form_law(setup: Setup, law: xr.Dataset) -> xr.Dataset:
@@ -99,8 +102,9 @@ def predicted_balance_time(setup: Setup, *, mass, beta, eps_bar, phi0_deg, kinem
     sigma = slow_decay_rate(*point, neutral=neutral, share=share) * wn
     # an unstable balanced state is never reached, whatever its decaying modes
     sigma = np.where(growth_rate(*point) > neutral, np.nan, sigma)
-    force = np.asarray(p.force)[(...,) + (None,) * np.ndim(sigma)]
-    return balance_time_law(p.time, force, setup.k * setup.criterion.r_threshold, sigma)
+    per_run = (...,) + (None,) * np.ndim(sigma)          # the passage's runs, then beta
+    return balance_time_law(np.asarray(p.time)[per_run], np.asarray(p.force)[per_run],
+                            setup.k * setup.criterion.r_threshold, sigma)
 
 
 @dataclass(frozen=True)
@@ -180,11 +184,13 @@ def prediction_rows(law: xr.Dataset, close, *, resamples: int = 200,
           "time, fastest first: " + ", ".join(
               f"{np.median(errors[valued & (quarter == q)]):+.1%}" for q in range(4))
         + ": like the law with the integrated passage it over-predicts the runs that balance "
-          "fastest. The closed-form peak force is off the integrated one by "
+          "fastest. The passage's peak force, exact for balls held still (Duhamel's integral "
+          "of the frozen-ball rotor under the run's own kinematics, checked against its "
+          "integration), is off the integrated one by "
           f"{np.nanmedian(force):+.1%} at the median (10th-90th percentiles "
-          f"{np.nanpercentile(force, 10):+.1%} to {np.nanpercentile(force, 90):+.1%}): the "
-          "balls move during the passage, which the closed form holds still, and the "
-          "logarithm divides that error by ln(F_pk / (k r_thr)) in the balance time. "
+          f"{np.nanpercentile(force, 10):+.1%} to {np.nanpercentile(force, 90):+.1%}): that "
+          "is the balls' motion during the passage, and the logarithm divides it by "
+          "ln(F_pk / (k r_thr)) in the balance time. "
           f"Close means within {close:.0%}, the comparison's standard", choices=choices)]
 
 
