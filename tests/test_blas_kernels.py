@@ -44,12 +44,15 @@ def second_kernel(environ=os.environ) -> str:
 
 
 def linear_algebra_tests() -> list[str]:
-    """The test files (but this one) that import a module of :data:`LINEAR_ALGEBRA` (or a name
-    of one) themselves."""
+    """The test files (but this one) that import a module of :data:`LINEAR_ALGEBRA`, or a
+    function or class of one, themselves (a constant, in capitals, runs none of its code)."""
     def tests_one(path):
-        names = imported_names(path.read_text(encoding="utf-8"))
-        return any(name == m or name.startswith(m + ".") for name in names
-                   for m in LINEAR_ALGEBRA)
+        names = imported_names(path.read_text(encoding="utf-8"))   # "m" and "m.name" for each
+        for m in LINEAR_ALGEBRA:                                    # name imported from m
+            taken = [n.rsplit(".", 1)[1] for n in names if n.startswith(m + ".")]
+            if m in names and (not taken or not all(name.isupper() for name in taken)):
+                return True
+        return False
     return sorted(str(path.relative_to(ROOT)) for path in (ROOT / "tests").glob("test_*.py")
                   if path.name != "test_blas_kernels.py" and tests_one(path))
 

@@ -1,6 +1,6 @@
-"""The closed-form critical-speed passage (rotorvib.models.balancer.passage) against the Cornu
+"""The critical-speed passage of frozen balls (rotorvib.models.balancer.passage) against the Cornu
 spiral, the quasi-static limit, an integration of the same linear rotor, and the package's
-engine with balls that cannot move; and the balance time and design rule built on it."""
+engine with balls that cannot move."""
 
 import numpy as np
 import pytest
@@ -10,7 +10,7 @@ from scipy.special import fresnel
 from rotorvib.models.balancer.kinematics import disk_kinematics
 from rotorvib.models.balancer.parameters import Balancer, SpeedProfile, fixed_parameters
 from rotorvib.models.balancer.passage import passage_peak
-from rotorvib.papers.b.prediction import design_rule, passage, predicted_balance_time
+from rotorvib.papers.b.prediction import passage
 
 
 def _slow_sweep_errors(c: float, ramps, limit) -> list[float]:
@@ -121,20 +121,3 @@ def test_no_passage_below_the_critical_speed(setup):
     low = passage(setup, mass=0.01, eps_bar=0.012, phi0_deg=[0.0, 0.0],
                   kinematics="consistent", speed=90.0)
     assert np.isnan(low.force) and np.isnan(low.time)
-
-
-def test_the_design_rule_answers_fast_and_never_recommends_what_does_not_balance(setup):
-    """The rule's recommendation is the grid's least mean predicted time, within a band that
-    contains it; masses below the existence bound (m < eps_bar M / 2) are never recommended,
-    and a grid of only such masses is refused."""
-    ics = [[40.0, 45.0], [110.0, 115.0], [260.0, 265.0]]
-    kwargs = dict(eps_bar=0.012, phi0_deg=ics, kinematics="printed", neutral=1e-9, share=0.1)
-    rule = design_rule(setup, masses=[0.004, 0.008, 0.012], betas=[0.2, 0.5, 1.0],
-                       error_band=(-0.1, 0.2), **kwargs)
-    assert np.isnan(rule.mean_time[0]).all() and rule.mass > 0.004
-    assert rule.time == pytest.approx(np.nanmin(rule.mean_time))
-    assert rule.band[0] < rule.time < rule.band[1]
-    direct = predicted_balance_time(setup, mass=rule.mass, beta=rule.beta, **kwargs)
-    assert rule.time == pytest.approx(np.mean(direct))
-    with pytest.raises(ValueError, match="no design of the grid balances"):
-        design_rule(setup, masses=[0.002, 0.004], betas=[0.5], **kwargs)

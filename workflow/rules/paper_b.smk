@@ -289,14 +289,15 @@ rule b_balance_law:
 
 
 rule b_design_rule:
-    input:
-        law=rules.b_balance_law.output[0],
     output:
         dataset("b", "design_rule"),
     log:
         logs("b_design_rule"),
+    benchmark:
+        benchmarks("b_design_rule")
     priority: LONGEST_CHAIN
-    # A grid of closed forms and eigenvalues, and three run-ups: runs where Snakemake runs.
+    # A grid of passages and eigenvalues, then a few hundred run-ups on threads (the verified
+    # candidates and the check grid): seconds, where Snakemake runs.
     localrule: True
     params:
         setup=B_SETUP,
@@ -305,7 +306,7 @@ rule b_design_rule:
         neutral=B["marginal_growth"],
         share=B["balance_law"]["whirl_share"],
     message:
-        "Paper B (beyond the paper): a design rule from the balance time predicted without integrating"
+        "Paper B (beyond the paper): a design rule predicted without integrating, verified by integrating"
     script:
         "../scripts/b_design_rule.py"
 

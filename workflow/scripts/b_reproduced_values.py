@@ -15,7 +15,8 @@ from rotorvib.papers.b.claims import reproduce
 from rotorvib.papers.b.ga_law import ga_law_rows
 from rotorvib.papers.b.law import law_rows, support_damping_rows, trend_rows
 from rotorvib.papers.b.pareto import pareto_rows
-from rotorvib.papers.b.prediction import design_rows, prediction_rows
+from rotorvib.papers.b.design import design_rows
+from rotorvib.papers.b.prediction import prediction_rows
 from rotorvib.papers.b.uncertainty import uncertainty_rows
 from rotorvib.papers.b.zeta_inversion import zeta_rows
 

@@ -1,6 +1,7 @@
 """In-loop analysers of a balancer run: from samples ``(t, r, F)`` of the whirl radius and the
 bearing force, the balance time (threshold and envelope definitions), the force maximum and its
-decay time, kept in one array while the integrator runs and returned as one metrics row.
+decay time and the whirl radius at the end, kept in one array while the integrator runs and
+returned as one metrics row.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from rotorvib.models.balancer.layout import COLUMN, METRICS, N_METRICS
 
 # the metrics' columns (layout.METRICS) as compiled-in constants
 (_M_STATUS, _M_STEPS, _M_BAL_T, _M_BAL, _M_ENV_T, _M_ENV, _M_F_MAX, _M_F_MAX_T, _M_F_T, _M_F_DONE,
- _M_T_STOP) = (COLUMN[name] for name in METRICS)
+ _M_T_STOP, _M_R_END, _M_OUTCOME) = (COLUMN[name] for name in METRICS)
 
 
 # analyser state carried between samples (indices into one array)
@@ -97,7 +98,7 @@ def balance_time_above(acc, bound):
 def forget(acc):
     """Leave every metric unknown (NaN): a run that stops before its metrics are known."""
     acc[_BAL] = acc[_ENV] = acc[_F_DONE] = np.nan
-    acc[_F_MAX] = acc[_F_MAX_T] = np.nan
+    acc[_F_MAX] = acc[_F_MAX_T] = acc[_R_LAST] = np.nan
 
 
 @njit(cache=True, error_model="numpy")
@@ -124,4 +125,5 @@ def metrics_row(acc, status, steps, t_stop, r_threshold):
     m[_M_F_T] = acc[_F_T] if acc[_F_DONE] == 1.0 else np.nan
     m[_M_F_DONE] = acc[_F_DONE]
     m[_M_T_STOP] = t_stop
+    m[_M_R_END] = acc[_R_LAST]       # the outcome is classified after the run (outcomes)
     return m

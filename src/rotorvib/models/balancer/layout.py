@@ -31,7 +31,8 @@ RUNNING = -1
 
 # metrics returned by the integrators (one row per run)
 METRICS = ("status", "n_steps", "balance_time", "balanced", "envelope_time", "envelope_balanced",
-           "force_max", "force_max_time", "force_decay_time", "force_decayed", "t_stop")
+           "force_max", "force_max_time", "force_decay_time", "force_decayed", "t_stop", "r_end",
+           "outcome")
 N_METRICS = len(METRICS)
 #: column of each metric, by name
 COLUMN = {name: i for i, name in enumerate(METRICS)}

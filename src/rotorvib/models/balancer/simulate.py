@@ -23,6 +23,7 @@ from rotorvib.models.balancer import dop853, engine, inputs, layout, settling
 from rotorvib.models.balancer.certificates import certificates
 from rotorvib.models.balancer.criteria import ATOL, METHOD, RTOL, BalanceCriterion, StopRule
 from rotorvib.models.balancer.layout import metric
+from rotorvib.models.balancer.outcomes import outcome
 from rotorvib.models.balancer.parameters import (Balancer, SpeedProfile, fixed_parameters,
                                                  fixed_state)
 
@@ -152,6 +153,8 @@ def run(form: int, p: np.ndarray, y0: np.ndarray, criterion: BalanceCriterion, *
     with _first_use(integrate):
         m = integrate(*args, *tableau)
     _raise_on_failure(m)
+    if form == layout.FIXED:
+        m[layout.COLUMN["outcome"]] = outcome(m, params[0])
     result = RunResult.from_metrics(m, c.t_end)
     if not store:
         return result
@@ -250,6 +253,8 @@ def run_batch(form: int, params: np.ndarray, y0s: np.ndarray, criterion: Balance
                 list(pool.map(take, [shared] * THREADS))   # each thread takes the next run
                 if report is not None:
                     report(block + min(start + chunk, len(runs)))
+    if form == layout.FIXED:
+        result[:, layout.COLUMN["outcome"]] = outcome(result, params)
     return result
 
 

@@ -53,16 +53,17 @@ def balance_law(law, paper):
 
 def design_rule(design, law, ga, paper):
     """Beyond the paper: the closed-form law's relative errors beside the integrated passage's
-    over every balanced run (medians and 90th percentiles marked), and the design rule's map of
-    the mean predicted balance time over (beta, m) with the recommended design, its band and
-    its integrated check, and the GA's optima at the rule's eccentricity and kinematics."""
+    over every balanced run (medians and 90th percentiles marked), and, on paper B's machine
+    under the rule's first kinematics (a user's), the map of the mean predicted balance time
+    over (beta, m) with the verified candidates, the recommendation, the check grid's
+    integrated best and the GA's optima at that eccentricity and kinematics."""
     fig, (ax1, ax2) = figure(1, 2, figsize=(12.0, 4.8))
     closed = law.relative_error_closed.values
     integrated = law.relative_error.values
     integrated = integrated[0] if integrated.ndim == 2 else integrated
     bins = np.linspace(-100, 150, 101)
     for i, (errors, name) in enumerate(((integrated, "passage integrated"),
-                                        (closed, "passage in closed form"))):
+                                        (closed, "passage of frozen balls, not integrated"))):
         shown = errors[np.isfinite(errors)]
         if not shown.size:
             continue
@@ -73,24 +74,37 @@ def design_rule(design, law, ga, paper):
     ax1.set(xlabel="relative error of the predicted balance time (%)", ylabel="runs",
             title="balance time t_pk + ln(F_pk / (k r_thr)) / σ\nagainst the integration")
     ax1.legend(fontsize=7, loc="upper right")
+    d = design.isel(machine=0, kinematics=0)
+    kinematics, eps_bar = str(d.kinematics.values), float(d.eps_bar_of_machine)
     beta, mass = design.beta.values, 1e3 * design.mass.values
-    shading = ax2.pcolormesh(beta, mass, design.mean_time.values, shading="nearest",
-                             cmap="viridis")
+    shading = ax2.pcolormesh(beta, mass, d.mean_time.values, shading="nearest", cmap="viridis")
     fig.colorbar(shading, ax=ax2, label="mean predicted balance time (s)")
-    ax2.plot(float(design.recommended_beta), 1e3 * float(design.recommended_mass), "*",
-             color="C3", ms=14, mec="w",
-             label=f"recommended: {float(design.recommended_time):.2f} s predicted "
-                   f"(band {float(design.band_low):.2f}-{float(design.band_high):.2f} s), "
-                   f"{np.mean(design.integrated_time.values):.2f} s integrated")
-    at = (ga.kinematics_name == design.attrs["kinematics"]).values
-    if at.any() and design.attrs["eps_bar"] in ga.eps_bar.values:
-        opt = ga.isel(kinematics=int(np.flatnonzero(at)[0])).sel(eps_bar=design.attrs["eps_bar"])
+    ax2.plot(d.candidate_beta.values, 1e3 * d.candidate_mass.values, "x", color="w", ms=7,
+             label=f"{d.candidate_mass.size} best predicted, integrated")
+    check = d.check_time.values
+    means = np.where(np.isfinite(check).all(axis=-1), check.mean(axis=-1), np.nan)
+    if np.isfinite(means).any():
+        i, j = np.unravel_index(np.nanargmin(means), means.shape)
+        ax2.plot(float(d.check_beta[j]), 1e3 * float(d.check_mass[i]), "s", mfc="none",
+                 mec="C1", ms=11, mew=2, label=f"check grid's best: {means[i, j]:.2f} s "
+                                               "integrated")
+    if np.isfinite(float(d.recommended_time)):
+        ax2.plot(float(d.recommended_beta), 1e3 * float(d.recommended_mass), "*", color="C3",
+                 ms=14, mec="w", label=f"recommended: {float(d.recommended_time):.2f} s "
+                                       f"integrated ({float(d.recommended_predicted):.2f} s "
+                                       "predicted)")
+    else:
+        ax2.plot([], [], " ", label="recommended: none (no candidate balances from every "
+                                    "initial condition)")
+    at = (ga.kinematics_name == kinematics).values
+    if at.any() and eps_bar in ga.eps_bar.values:
+        opt = ga.isel(kinematics=int(np.flatnonzero(at)[0])).sel(eps_bar=eps_bar)
         ax2.plot(opt.beta_opt.values, 1e3 * opt.mass_opt.values, "o", mfc="none", mec="w",
                  ms=8, mew=1.5, label="GA optima, one per initial condition (integrated)")
     ax2.set(xlabel="ball damping ratio β", ylabel="ball mass m (g)",
-            title=f"design rule: ε̄ = {design.attrs['eps_bar']:g}, "
-                  f"{design.attrs['speed_rad_s']:g} rad/s, {design.attrs['kinematics']} "
-                  "kinematics,\nmean over " + ", ".join(design.ic_name.values))
+            title=f"design rule on {d.machine.values}: ε̄ = {eps_bar:g}, "
+                  f"{float(d.speed_of_machine):g} rad/s, {kinematics} kinematics,\nmean over "
+                  + ", ".join(design.ic_name.values))
     ax2.legend(fontsize=7, loc="upper right")
     return fig
 

@@ -28,6 +28,7 @@ from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.tables import order_bound
 from rotorvib.io.variables import described
 from rotorvib.models.balancer import stability
+from rotorvib.methods import routh
 from rotorvib.methods.continuation import (gradient, refine_turning_point, tangent, trace,
                                            turning_points)
 from rotorvib.papers.b.choices import BOUNDARY_CHOICES
@@ -138,8 +139,6 @@ def exact_onset(fixed: dict, beta: float, n: int, *, digits: int):
     ``ValueError`` if the state is not unstable just above ``omega_c`` and stable at the
     bracket's top."""
     import mpmath
-
-    from rotorvib.methods import routh
 
     with mpmath.workdps(digits):
         m_bar, eps_bar, zeta = (mpmath.mpf(fixed[k]) for k in ("m_bar", "eps_bar", "zeta"))

@@ -133,15 +133,18 @@ def balance_against(study, paper, select=None, marks=None):
     xlabel, factor = _axis_label(study[axis])
     x = study[axis].values * factor
     t_end_marker = np.nanmax(study.balance_time.values) * 1.05
+    code = dict(zip(study.outcome.attrs["flag_meanings"].split(),
+                    study.outcome.attrs["flag_values"]))
     for i, kin in enumerate(_kinematics(study)):
         g = pick(study, kinematics=kin).isel(select)
         for j, ic in enumerate(str(n) for n in g.ic_name.values):
             y = g.balance_time.isel(ic=j).values
             ax.plot(x, y, STYLES[i], color=IC_COLORS.get(ic), label=f"{ic}, {kin}")
-            censored = g.balanced.isel(ic=j).values == 0
-            if censored.any():
-                ax.plot(x[censored], np.full(censored.sum(), t_end_marker), "x",
-                        color=IC_COLORS.get(ic))
+            ends = g.outcome.isel(ic=j).values
+            for name, marker in (("not_balanced_by_t_end", "x"), ("non_synchronous_whirl", "^")):
+                if (hits := ends == code[name]).any():
+                    ax.plot(x[hits], np.full(hits.sum(), t_end_marker), marker,
+                            color=IC_COLORS.get(ic), mfc="none")
     shown_unit = DISPLAY_UNITS.get(study[axis].attrs["units"], ("",))[0]
     for quantity, label in marks.items():
         value = factor * paper[quantity]
@@ -149,7 +152,8 @@ def balance_against(study, paper, select=None, marks=None):
     where = "".join(f", {SYMBOLS.get(name, name)} = {float(study[name][index]):g}"
                     for name, index in select.items())
     ax.set(xlabel=xlabel, ylabel="balance time (s)",
-           title=f"balance time against {axis}{where} (x: not balanced)")
+           title=f"balance time against {axis}{where}\n(x: not balanced by t_end, "
+                 "triangle: locked in a non-synchronous whirl)")
     ax.legend(fontsize=8, ncol=2)
     return fig
 

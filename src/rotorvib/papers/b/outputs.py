@@ -273,10 +273,12 @@ def figures(b: dict) -> dict[str, dict]:
             "design_rule",
             {"design": "design_rule", "law": "balance_law", "ga": "ga"},
             "Beyond the paper: the balance time predicted without integrating (the "
-            "critical-speed passage in closed form, the balls held at their initial angles) "
+            "critical-speed passage of balls held at their initial angles, Duhamel's integral) "
             "against the integration, its error beside the law's with the integrated passage, "
-            "and the design rule it gives: the mean predicted balance time over the ball mass "
-            "and damping, the recommended design and the GA's optima.",
+            "and the design rule on paper B's machine under a user's kinematics: the mean "
+            "predicted balance time over the ball mass and damping, the best predicted designs "
+            "verified by integration, the recommendation, the integrated check grid's best and "
+            "the GA's optima.",
             items=["Balance-time prediction"],
         ),
         "zeta_inversion": figure(

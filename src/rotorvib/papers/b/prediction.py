@@ -1,5 +1,4 @@
-"""Beyond paper B: the balance time predicted without integrating, and a design rule for the
-ball mass and damping.
+"""Beyond paper B: the balance time predicted without integrating.
 
 The balance-time law of :mod:`rotorvib.papers.b.law`,
 
@@ -11,14 +10,11 @@ their initial angles, exact for such balls by Duhamel's integral of the rotor's 
 equation (:mod:`rotorvib.models.balancer.passage`), and ``sigma``
 from the linearised balanced state, as in the law: no equation of motion is integrated.
 :func:`closed_form_law` evaluates it on every balanced run of the law's dataset;
-:func:`design_rule` searches a grid of ball masses and damping ratios for the least mean
-predicted balance time over given initial ball angles, with the band the law's measured
-errors put around it; :func:`prediction_rows` states how well it predicts.
+:func:`predicted_balance_time` gives it for any design (:mod:`rotorvib.papers.b.design`
+screens designs with it); :func:`prediction_rows` states how well it predicts.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
@@ -26,11 +22,9 @@ import xarray as xr
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.variables import described
 from rotorvib.methods.bands import percentile_spread
-from rotorvib.models.balancer.layout import METRICS
 from rotorvib.models.balancer.passage import passage_peak
 from rotorvib.papers.b.choices import LAW_CHOICES
 from rotorvib.papers.b.law import balance_time_law, error_text, slow_decay_rate
-from rotorvib.papers.b.attributes import dataset_attrs
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.stability_maps import growth_rate
 
@@ -107,46 +101,6 @@ def predicted_balance_time(setup: Setup, *, mass, beta, eps_bar, phi0_deg, kinem
                             setup.k * setup.criterion.r_threshold, sigma)
 
 
-@dataclass(frozen=True)
-class DesignRule:
-    """The design rule's answer: the mean predicted balance time over the initial ball angles
-    on the grid (``mean_time[mass, beta]``, s), the recommended ball mass (kg) and damping
-    ratio, the predicted time there and the band ``(low, high)`` the law's measured relative
-    errors put around it (the integrated time lies in it as often as in the errors'
-    percentiles)."""
-
-    masses: np.ndarray
-    betas: np.ndarray
-    mean_time: np.ndarray
-    mass: float
-    beta: float
-    time: float
-    band: tuple[float, float]
-
-
-def design_rule(setup: Setup, *, masses, betas, eps_bar, phi0_deg, kinematics, neutral: float,
-                share: float, error_band=(0.0, 0.0), speed=None) -> DesignRule:
-    """The ball mass and damping ratio of the grid ``masses`` x ``betas`` with the least mean
-    predicted balance time over the initial ball angles ``phi0_deg`` (rows, degrees), for the
-    machine, run-up and threshold of ``setup`` (:func:`predicted_balance_time`); a design
-    that does not balance (no decaying balanced state) is never recommended. ``error_band``:
-    relative errors ``(low, high)`` of the law (e.g. its 10th and 90th percentiles over the
-    integrated runs); the band is ``time / (1 + high)`` to ``time / (1 + low)``. Evaluates
-    one passage per mass and the eigenvalues of the grid: milliseconds."""
-    masses, betas = np.asarray(masses, float), np.asarray(betas, float)
-    mean = np.array([np.mean(predicted_balance_time(
-        setup, mass=m, beta=betas, eps_bar=eps_bar, phi0_deg=phi0_deg, kinematics=kinematics,
-        neutral=neutral, share=share, speed=speed), axis=0) for m in masses])
-    if not np.isfinite(mean).any():
-        raise ValueError("no design of the grid balances: no ball mass and damping to "
-                         "recommend (is the ball mass below half the unbalance, eq. 34?)")
-    i, j = np.unravel_index(np.nanargmin(mean), mean.shape)
-    low, high = error_band
-    time = float(mean[i, j])
-    return DesignRule(masses, betas, mean, float(masses[i]), float(betas[j]), time,
-                      (time / (1 + high), time / (1 + low)))
-
-
 def prediction_rows(law: xr.Dataset, close, *, resamples: int = 200,
                     seed: int = 0) -> list[Reproduced]:
     """Beyond the paper: does the law predict the median balanced run's balance time within
@@ -176,7 +130,7 @@ def prediction_rows(law: xr.Dataset, close, *, resamples: int = 200,
     quarter = np.digitize(times, np.nanpercentile(times[valued], [25, 50, 75]))
     return [Reproduced.claim(
         "B", "balance_law_closed_form", holds,
-        f"with the passage in closed form (no integration) the law's error over "
+        f"with the passage of frozen balls (no integration) the law's error over "
         f"{e.size} balanced runs is {error_text(errors)}, against {error_text(integrated)} "
         f"with the integrated passage; by study: "
         + "; ".join(f"{s}: {error_text(errors[source == s])}" for s in dict.fromkeys(source))
@@ -192,114 +146,3 @@ def prediction_rows(law: xr.Dataset, close, *, resamples: int = 200,
           "is the balls' motion during the passage, and the logarithm divides it by "
           "ln(F_pk / (k r_thr)) in the balance time. "
           f"Close means within {close:.0%}, the comparison's standard", choices=choices)]
-
-
-def design_dataset(setup: Setup, law: xr.Dataset, *, masses, betas, eps_bar, ics: dict,
-                   kinematics: str, speed: float, neutral: float, share: float,
-                   band_percentiles=(10.0, 90.0)) -> xr.Dataset:
-    """The design rule (:func:`design_rule`) for the machine and run-up of ``setup`` at
-    ``eps_bar`` and ``speed``, the balls starting from each initial condition of ``ics``
-    (name -> angles, degrees), its band from the closed-form law's signed errors over the
-    law's runs (``band_percentiles``), and the check: the recommended design integrated from
-    each initial condition (one run-up each). The grid is cut to the ball masses and damping
-    ratios the law's runs span: the rule does not extrapolate the law."""
-    errors = law.relative_error_closed.values
-    band = tuple(float(np.nanpercentile(errors, q)) for q in band_percentiles)
-    domain = {"mass": setup.M * np.array([law.m_bar.min(), law.m_bar.max()]),
-              "beta": np.array([law.beta.min(), law.beta.max()])}
-    masses, betas = (_within(np.asarray(grid, float), domain[name])
-                     for name, grid in (("mass", masses), ("beta", betas)))
-    rule = design_rule(setup, masses=masses, betas=betas, eps_bar=eps_bar,
-                       phi0_deg=list(ics.values()), kinematics=kinematics, neutral=neutral,
-                       share=share, error_band=band, speed=speed)
-    metrics = setup.runs([setup.run_inputs(mass=rule.mass, eps_bar=eps_bar, beta=rule.beta,
-                                           phi0_deg=angles, kinematics=kinematics, speed=speed)
-                          for angles in ics.values()], progress=False)
-    integrated = np.where(metrics[:, METRICS.index("balanced")] == 1,
-                          metrics[:, METRICS.index("balance_time")], np.nan)
-    edges = [name for name, value, grid in (("mass", rule.mass, rule.masses),
-                                            ("beta", rule.beta, rule.betas))
-             if value in (grid.min(), grid.max())]
-    return xr.Dataset(
-        described({
-            "mean_time": (("mass", "beta"), rule.mean_time),
-            "recommended_mass": ((), rule.mass), "recommended_beta": ((), rule.beta),
-            "recommended_time": ((), rule.time),
-            "band_low": ((), rule.band[0]), "band_high": ((), rule.band[1]),
-            "integrated_time": ("ic", integrated),
-        }, DESIGN_VARIABLES),
-        coords={"mass": ("mass", rule.masses, {"long_name": "ball mass m", "units": "kg"}),
-                "beta": ("beta", rule.betas, {"long_name": "ball damping ratio beta",
-                                              "units": "1"}),
-                "ic_name": ("ic", list(ics), {"long_name": "initial ball angles, eq. (39)"})},
-        attrs=dataset_attrs(
-            "a design rule for the ball mass and damping",
-            "Beyond the paper: the ball mass and damping with the least mean balance time over "
-            "the initial conditions, predicted without integrating (closed-form passage, decay "
-            "rate of the linearised balanced state), with the band of the law's "
-            f"{band_percentiles[0]:g}th-{band_percentiles[1]:g}th percentile errors, and the "
-            "recommendation integrated from each initial condition",
-            "Tables 1-2, section 9")
-        | {"eps_bar": eps_bar, "speed_rad_s": speed, "kinematics": kinematics,
-           "band_percentiles": list(band_percentiles),
-           "domain": "; ".join(f"{name} {lo:g} to {hi:g}" for name, (lo, hi) in domain.items()),
-           "recommended_on_grid_edge": ", ".join(edges) or "none"})
-
-
-def _within(grid: np.ndarray, bounds) -> np.ndarray:
-    """The points of ``grid`` within ``bounds`` (the law's tested range: the rule does not
-    extrapolate); ``ValueError`` if none is."""
-    inside = grid[(grid >= bounds[0] * (1 - 1e-12)) & (grid <= bounds[1] * (1 + 1e-12))]
-    if not inside.size:
-        raise ValueError(f"no point of the grid {grid.min():g}-{grid.max():g} lies in the range "
-                         f"{bounds[0]:g}-{bounds[1]:g} the law was tested on")
-    return inside
-
-
-#: The design rule's variables: (long name, units).
-DESIGN_VARIABLES = {
-    "mean_time": ("mean predicted balance time over the initial conditions (closed-form law)",
-                  "s"),
-    "recommended_mass": ("recommended ball mass (least mean predicted balance time)", "kg"),
-    "recommended_beta": ("recommended ball damping ratio", "1"),
-    "recommended_time": ("mean predicted balance time of the recommended design", "s"),
-    "band_low": ("low end of the band the law's errors put around the recommended time", "s"),
-    "band_high": ("high end of the band the law's errors put around the recommended time", "s"),
-    "integrated_time": ("balance time of the recommended design, integrated (NaN: not balanced "
-                        "by t_end)", "s"),
-}
-
-
-def design_rows(design: xr.Dataset) -> list[Reproduced]:
-    """Beyond the paper: does the integrated mean balance time of the design the rule
-    recommends lie in the band the rule gives for it? The margin is the integrated mean's
-    distance inside the band's nearer end, relative to it (negative outside; undetermined
-    when a run from one of the initial conditions does not balance)."""
-    integrated = design.integrated_time.values
-    low, high = float(design.band_low), float(design.band_high)
-    mean = float(np.mean(integrated))
-    design_text = (f"m = {1e3 * float(design.recommended_mass):.3g} g, beta = "
-                   f"{float(design.recommended_beta):.3g} at eps_bar = {design.attrs['eps_bar']:g}"
-                   f", {design.attrs['speed_rad_s']:g} rad/s, {design.attrs['kinematics']} "
-                   "kinematics")
-    edge = design.attrs["recommended_on_grid_edge"]
-    where = (f". The grid is searched where the law was tested ({design.attrs['domain']}; "
-             "below beta 0.1 the balls of a linearly stable design may never settle, which "
-             "the linear law cannot see)"
-             + ("" if edge == "none" else
-                f"; the recommendation lies on the searched grid's edge in {edge}, so the "
-                "optimum may lie beyond it"))
-    holds = (None if not np.isfinite(mean) else
-             Margin(min(mean - low, high - mean) / mean, 0.0, "relative",
-                    f"{integrated.size} integrated run-ups (exact)"))
-    return [Reproduced.claim(
-        "B", "design_rule_checked", holds,
-        f"the rule recommends {design_text}: mean balance time {float(design.recommended_time):.3g}"
-        f" s predicted, band {low:.3g}-{high:.3g} s ({design.attrs['band_percentiles'][0]:g}th-"
-        f"{design.attrs['band_percentiles'][1]:g}th percentile errors of the closed-form law); "
-        f"integrated from {', '.join(design.ic_name.values)}: "
-        + ", ".join(f"{t:.3g} s" if np.isfinite(t) else "not balanced by t_end"
-                    for t in integrated)
-        + (f", mean {mean:.3g} s" if np.isfinite(mean) else "") + where,
-        choices=LAW_CHOICES + ("paper_b.design_rule (the searched grid, machine point and band "
-                               "percentiles, chosen)",))]

@@ -15,6 +15,7 @@ import xarray as xr
 
 from rotorvib.io.coords import axis_coord, label_coord
 from rotorvib.models.balancer.layout import metric
+from rotorvib.models.balancer.outcomes import OUTCOMES
 from rotorvib.papers.b.attributes import dataset_attrs
 from rotorvib.papers.b.setup import (IC_LONG_NAME, KINEMATICS_LONG_NAME, LazyInputs, Setup,
                                      describe, parameter_coord)
@@ -27,6 +28,7 @@ METRIC_ATTRS = {
     "force_max": ("maximum bearing force F = k r + c r' (eq. 40)", "N"),
     "force_max_time": ("time of the maximum bearing force", "s"),
     "force_decay_time": ("time after which F stays below k r_threshold (NaN if not reached)", "s"),
+    "r_end": ("whirl radius at the end of the run", "m"),
 }
 
 
@@ -73,13 +75,20 @@ def grid_dataset(setup: Setup, axes: dict, coords: dict, make_inputs, attrs: dic
         return make_inputs(**{name: axes[name][i]
                               for name, i in zip(names, np.unravel_index(run[k], shape))})
 
-    metrics = (runs or setup.runs)(LazyInputs(run.size, point_inputs))[answer]
+    metrics = (runs or setup.runs)(LazyInputs(run.size, point_inputs))
     data = {}
     for var in METRIC_ATTRS:
-        values = metric(metrics, var).reshape(shape)
+        values = metric(metrics[answer], var).reshape(shape)
         if var == "balanced":
             values = values.astype(np.int8)
         data[var] = (names, values, metric_attrs(var))
+    outcomes = metric(metrics[answer], "outcome")
+    if np.isnan(outcomes).any():
+        raise ValueError("a run of the grid has no outcome (stopped above a balance bound)")
+    data["outcome"] = (names, outcomes.astype(np.int8).reshape(shape),
+                       {"long_name": "how the run ends", "units": "1",
+                        "flag_values": np.arange(len(OUTCOMES), dtype=np.int8),
+                        "flag_meanings": " ".join(OUTCOMES)})
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
