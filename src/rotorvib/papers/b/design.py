@@ -4,13 +4,14 @@ integration, and checked on an integrated grid.
 The rule has two stages.  The *screen* evaluates the balance time the law predicts without
 integrating (:func:`rotorvib.papers.b.prediction.predicted_balance_time`: the frozen-ball
 passage and the decay rate of the linearised balanced state) on a grid of ball masses and
-damping ratios, in milliseconds.  The prediction cannot choose beta well: with the balls held
-still the passage does not depend on beta, and a design whose balls lock into a
-non-synchronous whirl is linearly stable all the same.  So the *verification* integrates the
-``verify`` designs of least predicted mean time from every initial condition and recommends the
-one of least integrated mean time among those that balance from all of them.  The ball mass
-keeps a margin above the existence bound ``m >= eps_bar M / 2`` (eq. 34): a machine whose
-unbalance is larger than assumed would have no balanced state at all.
+damping ratios, in milliseconds, and keeps the ``verify`` masses of least predicted time.  The
+prediction cannot choose beta: with the balls held still the passage does not depend on it,
+and a design whose balls lock into a non-synchronous whirl is linearly stable all the same.
+So the *verification* integrates those masses with every beta of the grid from every initial
+condition (a few hundred run-ups: seconds) and recommends the design of least integrated mean
+time among those that balance from all of them.  The ball mass keeps a margin above the
+existence bound ``m >= eps_bar M / 2`` (eq. 34), the least mass it allows always screened: a
+machine whose unbalance is larger than assumed would have no balanced state at all.
 
 :func:`design_dataset` runs the rule under each kinematics on each machine and integrates a
 check grid there; :func:`design_rows` states whether the recommendation is within ``within`` of
@@ -37,10 +38,11 @@ from rotorvib.papers.b.setup import Setup
 @dataclass(frozen=True)
 class DesignRule:
     """The rule's answer.  The screen: the mean predicted balance time over the initial
-    conditions on the grid (``mean_time[mass, beta]``, s; NaN where a design has no decaying
-    balanced state or its mass is within the margin of the existence bound).  The verification:
-    the ``candidates`` (rows ``(mass, beta)``) of least predicted mean time, each integrated from
-    every initial condition (``verified_time[candidate, ic]``, s; NaN: not balanced by
+    conditions on the masses screened (the grid's above the margin and the least mass it
+    allows) and the grid's betas (``mean_time[mass, beta]``, s; NaN where a design has no
+    decaying balanced state).  The verification: the ``candidates`` (rows ``(mass, beta)``: the
+    masses of least predicted time with every beta), each integrated from every initial
+    condition (``verified_time[candidate, ic]``, s; NaN: not balanced by
     ``t_end``).  The recommendation: the verified candidate of least integrated mean time that
     balances from every initial condition (NaN when none does), its predicted mean time
     ``predicted`` and integrated one ``time``; ``seconds`` the rule took."""
@@ -72,34 +74,39 @@ def integrated_times(setup: Setup, designs, *, eps_bar, phi0_deg, kinematics,
 
 def design_rule(setup: Setup, *, masses, betas, eps_bar, phi0_deg, kinematics, neutral: float,
                 share: float, verify: int, mass_margin: float, speed=None) -> DesignRule:
-    """The ball mass and damping ratio of the grid ``masses`` x ``betas`` with the least mean
-    integrated balance time over the initial ball angles ``phi0_deg`` (rows, degrees) among the
-    ``verify`` designs of least mean predicted time (module docstring), for the machine, run-up
-    and criterion of ``setup``; masses below ``(1 + mass_margin)`` times the existence bound
-    are not considered.  ``ValueError`` if no design of the grid is predicted to balance."""
+    """The ball mass and damping ratio with the least mean integrated balance time over the
+    initial ball angles ``phi0_deg`` (rows, degrees), for the machine, run-up and criterion of
+    ``setup`` (module docstring).  The screen predicts the mean time of every design of
+    ``masses`` x ``betas``, the masses below ``(1 + mass_margin)`` times the existence bound
+    left out and that least mass added; the ``verify`` masses of least predicted time (over
+    beta) are integrated with every beta of the grid, since the prediction does not resolve
+    beta.  ``ValueError`` if no design of the grid is predicted to balance."""
     start = clock.perf_counter()
-    masses, betas = np.asarray(masses, float), np.asarray(betas, float)
+    lightest = (1 + mass_margin) * eps_bar * setup.M / 2
+    masses, betas = np.unique(np.asarray(masses, float)), np.asarray(betas, float)
+    masses = np.concatenate([[lightest], masses[masses > lightest * (1 + 1e-12)]])
     mean = np.array([np.mean(predicted_balance_time(
         setup, mass=m, beta=betas, eps_bar=eps_bar, phi0_deg=phi0_deg, kinematics=kinematics,
         neutral=neutral, share=share, speed=speed), axis=0) for m in masses])
-    mean[masses < (1 + mass_margin) * eps_bar * setup.M / 2 * (1 - 1e-12)] = np.nan
-    if not np.isfinite(mean).any():
+    best = np.where(np.isfinite(mean).any(axis=1), np.nanmin(
+        np.where(np.isfinite(mean), mean, np.inf), axis=1), np.inf)
+    if not np.isfinite(best).any():
         raise ValueError("no design of the grid balances: no ball mass and damping to "
                          "recommend (is the ball mass within the margin of half the "
                          "unbalance, eq. 34?)")
-    order = np.argsort(np.where(np.isfinite(mean), mean, np.inf), axis=None)
-    order = order[:min(verify, int(np.isfinite(mean).sum()))]
-    i, j = np.unravel_index(order, mean.shape)
-    candidates = np.stack([masses[i], betas[j]], axis=1)
+    chosen = np.argsort(best)[:min(verify, int(np.isfinite(best).sum()))]
+    candidates = np.array([(masses[i], b) for i in chosen for b in betas])
     verified = integrated_times(setup, candidates, eps_bar=eps_bar, phi0_deg=phi0_deg,
                                 kinematics=kinematics, speed=speed)
     means = np.where(np.isfinite(verified).all(axis=1), verified.mean(axis=1), np.inf)
-    best = int(np.argmin(means))
-    found = np.isfinite(means[best])
-    mass, beta = candidates[best] if found else (np.nan, np.nan)
+    pick = int(np.argmin(means))
+    if not np.isfinite(means[pick]):
+        return DesignRule(masses, betas, mean, candidates, verified, np.nan, np.nan, np.nan,
+                          np.nan, clock.perf_counter() - start)
+    mass, beta = candidates[pick]
+    predicted = mean[np.searchsorted(masses, mass), np.searchsorted(betas, beta)]
     return DesignRule(masses, betas, mean, candidates, verified, float(mass), float(beta),
-                      float(mean[i[best], j[best]]) if found else np.nan,
-                      float(means[best]) if found else np.nan, clock.perf_counter() - start)
+                      float(predicted), float(means[pick]), clock.perf_counter() - start)
 
 
 #: The design dataset's variables: (dimensions' tail after (machine, kinematics), long name,
@@ -133,8 +140,9 @@ def design_dataset(setup: Setup, *, masses, betas, ics: dict, kinematics, machin
     angles = list(ics.values())
     out = {name: np.full((len(machines), len(kinematics)) + shape, np.nan)
            for name, shape in (("mean_time", (len(masses), len(betas))),
-                               ("candidate_mass", (verify,)), ("candidate_beta", (verify,)),
-                               ("candidate_time", (verify, len(ics))),
+                               ("candidate_mass", (verify * len(betas),)),
+                               ("candidate_beta", (verify * len(betas),)),
+                               ("candidate_time", (verify * len(betas), len(ics))),
                                ("check_time", (len(check["mass"]), len(check["beta"]),
                                                len(ics))))}
     scalars = {name: np.full((len(machines), len(kinematics)), np.nan)
@@ -148,7 +156,8 @@ def design_dataset(setup: Setup, *, masses, betas, ics: dict, kinematics, machin
                                neutral=neutral, share=share, verify=verify,
                                mass_margin=mass_margin, **common)
             n = len(rule.candidates)
-            out["mean_time"][a, k] = rule.mean_time
+            on_grid = np.isin(masses, rule.masses)
+            out["mean_time"][a, k][on_grid] = rule.mean_time[np.isin(rule.masses, masses)]
             out["candidate_mass"][a, k, :n], out["candidate_beta"][a, k, :n] = rule.candidates.T
             out["candidate_time"][a, k, :n] = rule.verified_time
             grid = np.stack(np.meshgrid(check["mass"], check["beta"], indexing="ij"), -1)
@@ -224,10 +233,83 @@ def design_rows(design: xr.Dataset) -> list[Reproduced]:
                          "balance from every initial condition")
     return [Reproduced.claim(
         "B", "design_rule_checked", holds,
-        f"the {design.attrs['verify']} best predicted designs integrated from "
-        f"{', '.join(design.ic_name.values)}, masses at least "
+        f"the {design.attrs['verify']} masses of least predicted time integrated with every "
+        f"beta of the grid from {', '.join(design.ic_name.values)}, masses at least "
         f"{1 + design.attrs['mass_margin']:g} times the existence bound, the recommendation "
         f"against an integrated grid (within {within:.0%} of its best mean): " + "; ".join(parts),
         choices=LAW_CHOICES + ("paper_b.design_rule (the searched grid, the candidates "
                                "verified, the mass margin, the check grid and its tolerance, "
                                "the second machine, chosen)",))]
+
+
+def main(argv=None) -> int:
+    """``python -m rotorvib.papers.b.design [--base CONFIG] [--schema SCHEMA] [--machine NAME]
+    MACHINE.yaml...``: the design rule for your machine.  The files override the base configuration's ``paper_b``
+    keys (``machine``, ``speed``, ``initial_conditions``, ``design_rule``, ...) and are checked
+    as the workflow checks its own (a bad or out-of-range value names its key, before anything
+    runs); the rule then runs under each of ``design_rule.kinematics`` on each machine of
+    ``design_rule.machines`` and prints the recommendation, its predicted and integrated times,
+    how each initial condition's run ends and what it cost."""
+    import argparse
+
+    from rotorvib.models.balancer.outcomes import OUTCOME_TEXT, outcome
+    from rotorvib.pipeline.config import ConfigError, check_files
+
+    parser = argparse.ArgumentParser(prog="python -m rotorvib.papers.b.design",
+                                     description="The ball mass and damping for a machine: "
+                                                 "predicted, then verified by integration.")
+    parser.add_argument("--base", default="config/config.yaml")
+    parser.add_argument("--schema", default="config/schema.yaml")
+    parser.add_argument("--machine", action="append", default=None,
+                        help="a machine of design_rule.machines (all unless given; repeatable)")
+    parser.add_argument("files", nargs="+", help="YAML files of paper_b keys for your machine")
+    args = parser.parse_args(argv)
+    try:
+        config = check_files([args.base, *args.files], args.schema)
+    except ConfigError as error:
+        print(error)
+        return 1
+    b = config["paper_b"]
+    rule, ics = b["design_rule"], {n: b["initial_conditions"][n] for n in b["design_rule"]["ics"]}
+    setup = Setup.from_paper_b(b)
+    masses, betas = (np.linspace(rule[k]["min"], rule[k]["max"], rule[k]["n"])
+                     for k in ("mass", "beta"))
+    if unknown := set(args.machine or ()) - set(rule["machines"]):
+        print(f"--machine {sorted(unknown)}: not in design_rule.machines "
+              f"{sorted(rule['machines'])}")
+        return 1
+    print(f"machine M = {setup.M:g} kg, k = {setup.k:g} N/m, R = {setup.R:g} m; screened: ball "
+          f"mass {masses[0]:g}-{masses[-1]:g} kg, beta {betas[0]:g}-{betas[-1]:g} "
+          f"({masses.size} x {betas.size}); the recommendation is integrated, not extrapolated")
+    for name in args.machine or rule["machines"]:
+        machine = rule["machines"][name]
+        here = replace(setup, zeta=machine["zeta"])
+        for kin in rule["kinematics"]:
+            head = (f"{name} (zeta {machine['zeta']:g}, eps_bar {machine['eps_bar']:g}, "
+                    f"{machine['speed']:g} rad/s), {kin} kinematics:")
+            try:
+                r = design_rule(here, masses=masses, betas=betas, eps_bar=machine["eps_bar"],
+                                phi0_deg=list(ics.values()), kinematics=kin,
+                                neutral=b["marginal_growth"],
+                                share=b["balance_law"]["whirl_share"], verify=rule["verify"],
+                                mass_margin=rule["mass_margin"], speed=machine["speed"])
+            except ValueError as error:
+                print(f"{head} {error}")
+                continue
+            if not np.isfinite(r.time):
+                print(f"{head} none of the {len(r.candidates)} designs integrated balances "
+                      f"from every initial condition ({r.seconds:.1f} s)")
+                continue
+            inputs = [here.run_inputs(mass=r.mass, eps_bar=machine["eps_bar"], beta=r.beta,
+                                      phi0_deg=a, kinematics=kin, speed=machine["speed"])
+                      for a in ics.values()]
+            ends = outcome(here.runs(inputs, progress=False), np.array([p for p, _ in inputs]))
+            print(f"{head} m = {1e3 * r.mass:.4g} g, beta = {r.beta:.3g}: {r.time:.3g} s "
+                  f"integrated ({r.predicted:.3g} s predicted); "
+                  + ", ".join(f"{ic} {OUTCOME_TEXT[int(e)]}" for ic, e in zip(ics, ends))
+                  + f"; {r.verified_time.size} run-ups, {r.seconds:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
