@@ -79,11 +79,11 @@ def test_the_check_row_measures_the_recommendation_against_the_grids_best(time, 
 
 
 def test_the_command_designs_for_your_machine_and_refuses_bad_input(tmp_path, capsys):
-    """``python -m rotorvib.papers.b.design``: a stiffer machine with a smaller race at
+    """``python -m rotorvib.pipeline.machine_design``: a stiffer machine with a smaller race at
     400 rad/s gets a recommendation, integrated and balanced from every initial condition under
     each kinematics; a bad value is refused naming its key, before anything runs."""
     from conftest import ROOT
-    from rotorvib.papers.b.design import main
+    from rotorvib.pipeline.machine_design import main
 
     machine = tmp_path / "machine.yaml"
     machine.write_text("paper_b:\n  machine: {M: 1.0, k: 25000.0, R: 0.08, n: 2, zeta: 0.015}\n"
