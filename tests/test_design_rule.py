@@ -78,7 +78,8 @@ def test_the_check_row_measures_the_recommendation_against_the_grids_best(time, 
     assert "the grid's best m = 7 g, beta = 0.2, 4 s" in row.explanation
 
 
-def test_the_command_designs_for_your_machine_and_refuses_bad_input(tmp_path, capsys):
+def test_the_command_designs_for_your_machine_and_refuses_bad_input(tmp_path, capsys,
+                                                                    monkeypatch):
     """``python -m rotorvib.pipeline.machine_design``: a stiffer machine with a smaller race at
     400 rad/s gets a recommendation, integrated and balanced from every initial condition under
     each kinematics; a bad value is refused naming its key, before anything runs."""
@@ -92,7 +93,8 @@ def test_the_command_designs_for_your_machine_and_refuses_bad_input(tmp_path, ca
                        "    machines:\n      mine: {zeta: 0.015, eps_bar: 0.012, speed: 400.0}\n")
     paths = ["--base", str(ROOT / "config/config.yaml"), "--schema",
              str(ROOT / "config/schema.yaml")]
-    assert main([*paths, "--machine", "mine", str(machine)]) == 0
+    monkeypatch.chdir(tmp_path)                  # the defaults do not depend on the folder
+    assert main(["--machine", "mine", str(machine)]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 3 and "integrated, not extrapolated" in lines[0]
     for line, kin in zip(lines[1:], ("consistent", "printed")):

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -14,6 +15,10 @@ from rotorvib.models.balancer.outcomes import OUTCOME_TEXT, outcome
 from rotorvib.papers.b.design import design_rule
 from rotorvib.papers.b.setup import Setup
 from rotorvib.pipeline.config import ConfigError, check_files
+
+#: The checkout this package runs from (``src/rotorvib/pipeline/`` below it): its configuration
+#: and schema are the defaults, whatever the working directory.
+CHECKOUT = Path(__file__).resolve().parents[3]
 
 
 def main(argv=None) -> int:
@@ -27,8 +32,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m rotorvib.pipeline.machine_design",
                                      description="The ball mass and damping for a machine: "
                                                  "predicted, then verified by integration.")
-    parser.add_argument("--base", default="config/config.yaml")
-    parser.add_argument("--schema", default="config/schema.yaml")
+    parser.add_argument("--base", default=str(CHECKOUT / "config/config.yaml"))
+    parser.add_argument("--schema", default=str(CHECKOUT / "config/schema.yaml"))
     parser.add_argument("--machine", action="append", default=None,
                         help="a machine of design_rule.machines (all unless given; repeatable)")
     parser.add_argument("files", nargs="+", help="YAML files of paper_b keys for your machine")
