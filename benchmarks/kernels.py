@@ -94,7 +94,7 @@ def compare_datasets(first: Path, second: Path) -> dict[str, dict]:
                     if np.issubdtype(a[v].dtype, np.number)]
         gap, variable = max(gaps, default=(0.0, ""))
         out[name] = {"relative": gap, "variable": variable,
-                     "variables_above_1e-9": sum(g > 1e-9 for g, _ in gaps)}
+                     "variables_above_1e-9": {v: g for g, v in sorted(gaps) if g > 1e-9}}
     return out
 
 
@@ -122,8 +122,9 @@ def main(argv=None) -> int:
     for column, gap in c["largest"].items():
         print(f"  {column}: largest relative difference {gap['relative']:.1e} ({gap['row']})")
     for name, gap in record["datasets"].items():
-        print(f"{name}: {gap['relative']:.1e} ({gap['variable']}; "
-              f"{gap['variables_above_1e-9']} variables above 1e-9)")
+        above = ", ".join(f"{v} {g:.0e}" for v, g in gap["variables_above_1e-9"].items())
+        print(f"{name}: {gap['relative']:.1e} ({gap['variable']})"
+              + (f"; above 1e-9: {above}" if above else ""))
     return 1 if c["differing_rows"] else 0
 
 
