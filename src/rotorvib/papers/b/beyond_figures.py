@@ -79,8 +79,10 @@ def design_rule(design, law, ga, paper):
     beta, mass = design.beta.values, 1e3 * design.mass.values
     shading = ax2.pcolormesh(beta, mass, d.mean_time.values, shading="nearest", cmap="viridis")
     fig.colorbar(shading, ax=ax2, label="mean predicted balance time (s)")
-    ax2.plot(d.candidate_beta.values, 1e3 * d.candidate_mass.values, "x", color="w", ms=7,
-             label=f"{d.candidate_mass.size} best predicted, integrated")
+    masses = np.unique(d.candidate_mass.values[np.isfinite(d.candidate_mass.values)])
+    ax2.plot(d.candidate_beta.values, 1e3 * d.candidate_mass.values, "x", color="0.4", ms=5,
+             label=f"integrated: the {masses.size} masses of least predicted time "
+                   f"({', '.join(f'{1e3 * m:.3g}' for m in masses)} g), every β")
     check = d.check_time.values
     means = np.where(np.isfinite(check).all(axis=-1), check.mean(axis=-1), np.nan)
     if np.isfinite(means).any():
@@ -99,7 +101,7 @@ def design_rule(design, law, ga, paper):
     at = (ga.kinematics_name == kinematics).values
     if at.any() and eps_bar in ga.eps_bar.values:
         opt = ga.isel(kinematics=int(np.flatnonzero(at)[0])).sel(eps_bar=eps_bar)
-        ax2.plot(opt.beta_opt.values, 1e3 * opt.mass_opt.values, "o", mfc="none", mec="w",
+        ax2.plot(opt.beta_opt.values, 1e3 * opt.mass_opt.values, "o", mfc="none", mec="C2",
                  ms=8, mew=1.5, label="GA optima, one per initial condition (integrated)")
     ax2.set(xlabel="ball damping ratio β", ylabel="ball mass m (g)",
             title=f"design rule on {d.machine.values}: ε̄ = {eps_bar:g}, "
