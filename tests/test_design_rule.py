@@ -98,7 +98,8 @@ def test_the_command_designs_for_your_machine_and_refuses_bad_input(tmp_path, ca
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 3 and "integrated, not extrapolated" in lines[0]
     for line, kin in zip(lines[1:], ("consistent", "printed")):
-        assert line.startswith(f"mine (zeta 0.015, eps_bar 0.012, 400 rad/s), {kin} kinematics: m =")
+        assert line.startswith(f"mine (zeta 0.015, eps_bar 0.012, 400 rad/s), {kin} "
+                               "kinematics: m =")
         assert "IC1 balanced, IC2 balanced, IC3 balanced; 12 run-ups" in line
     machine.write_text("paper_b:\n  design_rule:\n    mass_margin: -1.0\n")
     assert main([*paths, str(machine)]) == 1

@@ -23,9 +23,9 @@ IC1 = [40.0, 45.0]
 
 def test_light_lightly_damped_balls_lock_into_a_non_synchronous_whirl(setup):
     """Consistent kinematics, 6 g balls at beta = 0.1 from IC1 (8 s): the whirl at the end is
-    more than five times the largest synchronous whirl, far above what the passage can leave, it turns at about the critical speed
-    (100 rad/s), not at the disk's 200 rad/s, and the run is classified as locked; at
-    beta = 1 the same balls balance."""
+    more than five times the largest synchronous whirl, far above what the passage can
+    leave, it turns at about the critical speed (100 rad/s), not at the disk's 200 rad/s,
+    and the run is classified as locked; at beta = 1 the same balls balance."""
     inputs = [setup.run_inputs(mass=0.006, eps_bar=0.012, beta=beta, phi0_deg=IC1,
                                kinematics="consistent") for beta in (0.1, 1.0)]
     metrics = setup.runs(inputs, progress=False)

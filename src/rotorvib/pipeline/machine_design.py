@@ -23,12 +23,13 @@ CHECKOUT = Path(__file__).resolve().parents[3]
 
 def main(argv=None) -> int:
     """``python -m rotorvib.pipeline.machine_design [--base CONFIG] [--schema SCHEMA]
-    [--machine NAME] MACHINE.yaml...``: the design rule for your machine.  The files override the base configuration's ``paper_b``
-    keys (``machine``, ``speed``, ``initial_conditions``, ``design_rule``, ...) and are checked
-    as the workflow checks its own (a bad or out-of-range value names its key, before anything
-    runs); the rule then runs under each of ``design_rule.kinematics`` on each machine of
-    ``design_rule.machines`` and prints the recommendation, its predicted and integrated times,
-    how each initial condition's run ends and what it cost."""
+    [--machine NAME] MACHINE.yaml...``: the design rule for your machine. The files override
+    the base configuration's ``paper_b`` keys (``machine``, ``speed``,
+    ``initial_conditions``, ``design_rule``, ...) and are checked as the workflow checks its
+    own (a bad or out-of-range value names its key, before anything runs); the rule then
+    runs under each of ``design_rule.kinematics`` on each machine of
+    ``design_rule.machines`` and prints the recommendation, its predicted and integrated
+    times, how each initial condition's run ends and what it cost."""
     parser = argparse.ArgumentParser(prog="python -m rotorvib.pipeline.machine_design",
                                      description="The ball mass and damping for a machine: "
                                                  "predicted, then verified by integration.")

@@ -20,19 +20,19 @@ consistent ``Phi = int w dt``).  Its solution from rest at ``z0`` is Duhamel's i
 ``zeta_t = c / (2 sqrt(k M_t))``, ``w_d = w sqrt(1 - zeta_t^2)``: exact for balls that do not
 move.  ``J`` does not depend on the ball angles, so one quadrature serves every set of them:
 ``J = (y_1 - y_2) / (M_t (lam_1 - lam_2))`` with ``y_j(t) = int_0^t e^{lam_j (t - tau)} f dtau``
-by the trapezoidal rule (a recurrence, :func:`_decaying_integral`), :data:`STEPS_PER_TURN` steps per turn of the fastest phase
-(``Phi' + w``; relative error about ``(2 pi / STEPS_PER_TURN)^2 / 12`` = 1e-5).  The peak is the
-greatest ``|z|`` in a window around the crossing time ``t_c`` (``Phi'(t_c) = w``), of
-:data:`WINDOW` in units of ``1 / sqrt(a)``, ``a = d Phi' / dt`` at ``t_c`` the sweep rate of the
-excitation's frequency (under the printed kinematics ``2 w' + w'' t``, not the printed
-``Phi'' = 2 w'``).
+by the trapezoidal rule (a recurrence, :func:`_decaying_integral`), :data:`STEPS_PER_TURN` steps
+per turn of the fastest phase (``Phi' + w``; relative error about
+``(2 pi / STEPS_PER_TURN)^2 / 12`` = 1e-5).  The peak is the greatest ``|z|`` in a window
+around the crossing time ``t_c`` (``Phi'(t_c) = w``), of :data:`WINDOW` in units of
+``1 / sqrt(a)``, ``a = d Phi' / dt`` at ``t_c`` the sweep rate of the excitation's frequency
+(under the printed kinematics ``2 w' + w'' t``, not the printed ``Phi'' = 2 w'``).
 
 Two limits check it (tests/test_passage.py): a slow, linear, undamped sweep
 (``eta = a / w^2 -> 0``) peaks at ``sqrt(pi)`` times the Cornu spiral's greatest distance from
-its start, ``r_pk = 1.467 eps_u / sqrt(eta)`` (``eps_u = |U| / M_t``), within ``O(sqrt eta)``; a
-slow, damped one at the steady response's greatest value over speed,
-``r_pk = eps_u / (2 zeta_t sqrt(1 - zeta_t^2))`` (``zeta_t < 1 / sqrt 2``).  At the peak ``r' = 0``, so the bearing
-force ``k r + c r'`` (eq. 40) is ``k r_pk``.
+its start, ``r_pk = 1.467 eps_u / sqrt(eta)`` (``eps_u = |U| / M_t``), within ``O(sqrt eta)``;
+a slow, damped one at the steady response's greatest value over speed,
+``r_pk = eps_u / (2 zeta_t sqrt(1 - zeta_t^2))`` (``zeta_t < 1 / sqrt 2``).  At the peak
+``r' = 0``, so the bearing force ``k r + c r'`` (eq. 40) is ``k r_pk``.
 """
 
 from __future__ import annotations
