@@ -49,10 +49,10 @@ def relative(a: np.ndarray, b: np.ndarray) -> float:
     """Largest ``|a - b|`` relative to the larger magnitude of ``a``; NaN where both are
     NaN counts as equal, a NaN on one side only as infinitely different."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    if a.shape != b.shape or (np.isnan(a) != np.isnan(b)).any():
+    if a.shape != b.shape:
         return float("inf")
     finite = np.isfinite(a) & np.isfinite(b)
-    if (a[~finite] != b[~finite]).any() and not np.isnan(a[~finite]).all():
+    if not np.array_equal(a[~finite], b[~finite], equal_nan=True):
         return float("inf")
     scale = float(np.max(np.abs(a[finite]), initial=0.0))
     diff = float(np.max(np.abs(a[finite] - b[finite]), initial=0.0))

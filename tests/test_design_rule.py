@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from rotorvib.models.balancer.outcomes import BALANCED, NON_SYNCHRONOUS
 from rotorvib.papers.b.design import design_rows, design_rule, integrated_times
 
 ICS = [[40.0, 45.0], [110.0, 115.0], [260.0, 265.0]]
@@ -34,6 +35,9 @@ def test_the_verified_recommendation_is_the_integrated_grids_best(setup, kinemat
     if kinematics == "consistent":
         assert tuple(rule.candidates[0]) == pytest.approx((0.0066, 0.1))
         assert not np.isfinite(rule.verified_time[0]).all()
+        assert NON_SYNCHRONOUS in rule.verified_outcome[0]
+    chosen = (rule.candidates == (rule.mass, rule.beta)).all(axis=1)
+    assert (rule.verified_outcome[chosen] == BALANCED).all()
 
 
 def test_the_mass_keeps_its_margin_and_a_grid_without_a_balancing_design_is_refused(setup):

@@ -11,7 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorvib.models.balancer.outcomes import OUTCOME_TEXT, outcome
+from rotorvib.io.coords import grid
+from rotorvib.models.balancer.outcomes import OUTCOME_TEXT
 from rotorvib.papers.b.design import design_rule
 from rotorvib.papers.b.setup import Setup
 from rotorvib.pipeline.config import ConfigError, check_files
@@ -47,8 +48,7 @@ def main(argv=None) -> int:
     b = config["paper_b"]
     rule, ics = b["design_rule"], {n: b["initial_conditions"][n] for n in b["design_rule"]["ics"]}
     setup = Setup.from_paper_b(b)
-    masses, betas = (np.linspace(rule[k]["min"], rule[k]["max"], rule[k]["n"])
-                     for k in ("mass", "beta"))
+    masses, betas = grid(rule["mass"]), grid(rule["beta"])
     if unknown := set(args.machine or ()) - set(rule["machines"]):
         print(f"--machine {sorted(unknown)}: not in design_rule.machines "
               f"{sorted(rule['machines'])}")
@@ -75,10 +75,8 @@ def main(argv=None) -> int:
                 print(f"{head} none of the {len(r.candidates)} designs integrated balances "
                       f"from every initial condition ({r.seconds:.1f} s)")
                 continue
-            inputs = [here.run_inputs(mass=r.mass, eps_bar=machine["eps_bar"], beta=r.beta,
-                                      phi0_deg=a, kinematics=kin, speed=machine["speed"])
-                      for a in ics.values()]
-            ends = outcome(here.runs(inputs, progress=False), np.array([p for p, _ in inputs]))
+            chosen = (r.candidates == (r.mass, r.beta)).all(axis=1)
+            ends = r.verified_outcome[chosen][0]
             print(f"{head} m = {1e3 * r.mass:.4g} g, beta = {r.beta:.3g}: {r.time:.3g} s "
                   f"integrated ({r.predicted:.3g} s predicted); "
                   + ", ".join(f"{ic} {OUTCOME_TEXT[int(e)]}" for ic, e in zip(ics, ends))

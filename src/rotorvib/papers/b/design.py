@@ -43,7 +43,8 @@ class DesignRule:
     decaying balanced state).  The verification: the ``candidates`` (rows ``(mass, beta)``: the
     masses of least predicted time with every beta), each integrated from every initial
     condition (``verified_time[candidate, ic]``, s; NaN: not balanced by
-    ``t_end``).  The recommendation: the verified candidate of least integrated mean time that
+    ``t_end``; ``verified_outcome`` how each run ends,
+    :data:`~rotorvib.models.balancer.outcomes.OUTCOMES`).  The recommendation: the verified candidate of least integrated mean time that
     balances from every initial condition (NaN when none does), its predicted mean time
     ``predicted`` and integrated one ``time``; ``seconds`` the rule took."""
 
@@ -52,6 +53,7 @@ class DesignRule:
     mean_time: np.ndarray
     candidates: np.ndarray
     verified_time: np.ndarray
+    verified_outcome: np.ndarray
     mass: float
     beta: float
     predicted: float
@@ -59,17 +61,27 @@ class DesignRule:
     seconds: float
 
 
-def integrated_times(setup: Setup, designs, *, eps_bar, phi0_deg, kinematics,
-                     speed=None) -> np.ndarray:
-    """The integrated balance time (s) of each design (rows ``(mass, beta)``) from each initial
-    condition of ``phi0_deg`` (rows, degrees): shape ``(designs, ics)``, NaN where the run does
-    not balance by the criterion's ``t_end``."""
+def integrated_metrics(setup: Setup, designs, *, eps_bar, phi0_deg, kinematics,
+                       speed=None) -> np.ndarray:
+    """The metrics rows (:data:`~rotorvib.models.balancer.layout.METRICS`) of each design (rows
+    ``(mass, beta)``) integrated from each initial condition of ``phi0_deg`` (rows, degrees):
+    shape ``(designs, ics, metrics)``."""
     designs, phi0_deg = np.atleast_2d(designs), np.atleast_2d(phi0_deg)
     metrics = setup.runs([setup.run_inputs(mass=m, eps_bar=eps_bar, beta=b, phi0_deg=angles,
                                            kinematics=kinematics, speed=speed)
                           for m, b in designs for angles in phi0_deg], progress=False)
-    times = np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"), np.nan)
-    return times.reshape(len(designs), len(phi0_deg))
+    return metrics.reshape(len(designs), len(phi0_deg), -1)
+
+
+def balance_times(metrics: np.ndarray) -> np.ndarray:
+    """The balance time (s) of each metrics row, NaN where the run does not balance by the
+    criterion's ``t_end``."""
+    return np.where(metric(metrics, "balanced") == 1, metric(metrics, "balance_time"), np.nan)
+
+
+def integrated_times(setup: Setup, designs, **run) -> np.ndarray:
+    """:func:`balance_times` of :func:`integrated_metrics`: shape ``(designs, ics)``."""
+    return balance_times(integrated_metrics(setup, designs, **run))
 
 
 def design_rule(setup: Setup, *, masses, betas, eps_bar, phi0_deg, kinematics, neutral: float,
@@ -88,24 +100,24 @@ def design_rule(setup: Setup, *, masses, betas, eps_bar, phi0_deg, kinematics, n
     mean = np.array([np.mean(predicted_balance_time(
         setup, mass=m, beta=betas, eps_bar=eps_bar, phi0_deg=phi0_deg, kinematics=kinematics,
         neutral=neutral, share=share, speed=speed), axis=0) for m in masses])
-    best = np.where(np.isfinite(mean).any(axis=1), np.nanmin(
-        np.where(np.isfinite(mean), mean, np.inf), axis=1), np.inf)
+    best = np.where(np.isfinite(mean), mean, np.inf).min(axis=1)
     if not np.isfinite(best).any():
         raise ValueError("no design of the grid balances: no ball mass and damping to "
                          "recommend (is the ball mass within the margin of half the "
                          "unbalance, eq. 34?)")
     chosen = np.argsort(best)[:min(verify, int(np.isfinite(best).sum()))]
     candidates = np.array([(masses[i], b) for i in chosen for b in betas])
-    verified = integrated_times(setup, candidates, eps_bar=eps_bar, phi0_deg=phi0_deg,
-                                kinematics=kinematics, speed=speed)
+    metrics = integrated_metrics(setup, candidates, eps_bar=eps_bar, phi0_deg=phi0_deg,
+                                 kinematics=kinematics, speed=speed)
+    verified, ends = balance_times(metrics), metric(metrics, "outcome")
     means = np.where(np.isfinite(verified).all(axis=1), verified.mean(axis=1), np.inf)
     pick = int(np.argmin(means))
     if not np.isfinite(means[pick]):
-        return DesignRule(masses, betas, mean, candidates, verified, np.nan, np.nan, np.nan,
-                          np.nan, clock.perf_counter() - start)
+        return DesignRule(masses, betas, mean, candidates, verified, ends, np.nan, np.nan,
+                          np.nan, np.nan, clock.perf_counter() - start)
     mass, beta = candidates[pick]
     predicted = mean[np.searchsorted(masses, mass), np.searchsorted(betas, beta)]
-    return DesignRule(masses, betas, mean, candidates, verified, float(mass), float(beta),
+    return DesignRule(masses, betas, mean, candidates, verified, ends, float(mass), float(beta),
                       float(predicted), float(means[pick]), clock.perf_counter() - start)
 
 
@@ -194,9 +206,9 @@ def design_dataset(setup: Setup, *, masses, betas, ics: dict, kinematics, machin
         attrs=dataset_attrs(
             "a design rule for the ball mass and damping, verified",
             "Beyond the paper: the ball mass and damping predicted without integrating (the "
-            "screen), the best predicted designs integrated from every initial condition (the "
-            "verification), the recommendation, and an integrated check grid, under each "
-            "kinematics on each machine", "Tables 1-2, section 9")
+            "screen), the masses of least predicted time integrated with every beta from every "
+            "initial condition (the verification), the recommendation, and an integrated check "
+            "grid, under each kinematics on each machine", "Tables 1-2, section 9")
         | {"verify": verify, "mass_margin": mass_margin, "within": check["within"]})
 
 
