@@ -11,11 +11,10 @@ import pytest
 from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.absorber.frequency_response import (
     dimensionless_amplitude,
-    natural_frequencies,
     rotor_peak,
     steady_state,
 )
-from rotorvib.models.absorber.parameters import AbsorberSet, dual_from_vector, dual_to_vector
+from rotorvib.models.absorber.parameters import dual_from_vector, dual_to_vector
 from rotorvib.models.absorber.tuning import den_hartog_single
 from rotorvib.papers.c.broadband import (
     BAND_CHUNK,
@@ -26,7 +25,6 @@ from rotorvib.papers.c.broadband import (
     broadband_fronts,
     free_spring_dual,
     pick_at_mass,
-    tuned_mass_floor,
 )
 
 W = np.linspace(0.7, 1.3, 241)
@@ -67,16 +65,6 @@ def test_with_free_springs_a_dual_of_den_hartogs_mass_beats_it(rotor, table2, co
     assert [s.m for s in pair] == [mass / 2, mass / 2] and all(s.d == d for s in pair)
     assert rotor_peak(rotor, pair)[1] < 0.95 * single
     assert min(s.k for s in pair) < config["paper_c"]["bounds"]["k"][0]
-
-
-def test_the_tuned_mass_floor_tunes_each_set_to_omega_n(rotor):
-    """Two sets at the floor, springs at k_min: each set alone (on a clamped disk) has
-    2 k / m = omega_n^2."""
-    k_min = 1.0e4
-    m = tuned_mass_floor(rotor, k_min) / 4
-    s = AbsorberSet(m=m, k=k_min, c=0.0, d=1e-9)       # d -> 0: the set decouples from the disk
-    assert np.sqrt(2 * s.k / s.m) == pytest.approx(rotor.omega_n, rel=1e-12)
-    assert natural_frequencies(rotor, (s, s)) == pytest.approx([1.0, 1.0, 1.0], rel=1e-6)
 
 
 def test_the_front_beats_table2_at_its_mass(rotor, table2, config):
@@ -132,7 +120,7 @@ def test_a_broadband_claim_inside_the_seed_spread_is_undetermined():
             {"peak": ("design", [4.0, 3.0, den_hartog, by_seed[0]]),
              "added_mass": ("design", [0.37, 0.37, 0.37, 0.37]),
              "front_band_peak": ("front", [3.0, 2.0]), "front_den_hartog_peak": ("front", [3.5, 2.5]),
-             "front_added_mass": ("front", [0.3, 0.4]), "tuned_mass_floor": ((), 0.39),
+             "front_added_mass": ("front", [0.3, 0.4]),
              "broadband_peak_by_seed": ("seed", by_seed), "free_spring_peak": ((), free),
              "free_spring_parameters": ("parameter", [0.1, 0.1, 6e3, 9e3, 4.0, 6.0, 0.1, 0.1]),
              "lower_bound_k": ((), 1e4)},
@@ -146,7 +134,8 @@ def test_a_broadband_claim_inside_the_seed_spread_is_undetermined():
     noisy = rows([2.0, 2.35, 1.9, 2.1, 2.0], den_hartog=2.2)       # seeds +/- 11 %
     row = noisy["broadband_below_den_hartog"]
     assert [h for _, h in row.holds] == [None, False]
-    assert claim_verdict(row.holds) == "UNDETERMINED"
+    # the seeds cannot decide it within the bounds; it fails with the springs free
+    assert claim_verdict(row.holds) == "NOT SUPPORTED"
     assert claim_verdict(rows([2.4, 2.4], den_hartog=2.2, free=2.0)[
         "broadband_below_den_hartog"].holds) == "DEPENDS"          # holds only with k free
     assert row.margin.value == pytest.approx(0.1) and row.margin.uncertainty == pytest.approx(0.1125)
@@ -179,3 +168,16 @@ def test_each_seeds_search_logs_its_generations(rotor, config, caplog):
             rf"broadband NSGA-II, seed {seed}: generations: (\d+) of 4, [\d.]+ s elapsed, "
             r"about \S+ s left$", line))]
         assert done[0] == 1 and done[-1] == 4, lines
+
+
+def test_the_front_is_said_below_den_hartog_from_a_mass_only_where_every_heavier_design_is():
+    from rotorvib.papers.c.broadband import front_below_text
+
+    mass = [0.3, 0.4, 0.5, 0.6]
+    assert front_below_text(mass, [False, True, True, True]) == (
+        "every design of the front from 0.4 kg up is below Den Hartog's curve (3 of 4)")
+    assert front_below_text(mass, [False, True, False, True]) == (
+        "2 of the front's 4 designs are below Den Hartog's curve, between 0.4 and 0.6 kg, not "
+        "all the designs between")
+    assert front_below_text(mass, [False] * 4) == ("no design of the front is below Den "
+                                                   "Hartog's curve")

@@ -50,12 +50,27 @@ def test_claim_verdicts_from_variants():
     assert claim_verdict((("printed", True), ("consistent", True))) == "SUPPORTED"
     assert claim_verdict((("printed", False), ("consistent", False))) == "NOT SUPPORTED"
     assert claim_verdict((("printed", True), ("consistent", False))) == "DEPENDS"
-    assert claim_verdict((("printed", True), ("consistent", None))) == "DEPENDS"
-    # fails under one variant, undecided under the other: it holds under none
-    assert claim_verdict((("printed", None), ("consistent", False))) == "UNDETERMINED"
+    # a variant that cannot decide counts neither way
+    assert claim_verdict((("printed", True), ("consistent", None))) == "SUPPORTED"
+    assert claim_verdict((("printed", None), ("consistent", False))) == "NOT SUPPORTED"
     assert claim_verdict((("", None),)) == "UNDETERMINED"
     with pytest.raises(ValueError):
         claim_verdict(())
+
+
+MIRROR = {"SUPPORTED": "NOT SUPPORTED", "NOT SUPPORTED": "SUPPORTED", "DEPENDS": "DEPENDS",
+          "UNDETERMINED": "UNDETERMINED"}
+
+
+@pytest.mark.parametrize("holds", [(a, b, c) for a in (True, False, None)
+                                   for b in (True, False, None) for c in (True, False, None)])
+def test_the_claim_verdict_treats_holds_and_fails_alike(holds):
+    """Exchanging holds and fails under every variant mirrors the verdict (SUPPORTED <-> NOT
+    SUPPORTED; DEPENDS and UNDETERMINED stay): holds + undetermined and fails + undetermined
+    are mirror images, not DEPENDS and UNDETERMINED."""
+    named = tuple(zip("xyz", holds))
+    mirrored = tuple((k, None if h is None else not h) for k, h in named)
+    assert claim_verdict(mirrored) == MIRROR[claim_verdict(named)]
 
 
 def test_a_claim_evaluated_under_two_variants_that_disagree_depends():

@@ -97,6 +97,13 @@ CASES = [
     ("paper_b.uncertainty.ranges.r0", [2e-3, 5e-4], None),
     ("paper_b.uncertainty.ranges.eps_tolerance", [-0.1, 0.1], "paper_b.uncertainty.ranges.eps_tolerance.1"),
     ("paper_b.uncertainty.ranges.overload", 0.0, None),
+    # an alternative prior beyond the sample's range, or upside down
+    ("paper_b.uncertainty.prior_alternatives.zeta", [[0.004, 0.012]],
+     "paper_b.uncertainty.prior_alternatives.zeta[0]"),
+    ("paper_b.uncertainty.prior_alternatives.zeta", [[0.012, 0.008]],
+     "paper_b.uncertainty.prior_alternatives.zeta[0]"),
+    ("paper_b.uncertainty.prior_alternatives.R", [[0.1, 0.1]],
+     "paper_b.uncertainty.prior_alternatives"),
     ("paper_b.uncertainty.n_base", 2.5, None), ("paper_b.uncertainty.resamples", 0, None),
     ("paper_b.uncertainty.mean_over_ics.n_base", 0, None),
     ("paper_c.uncertainty.tolerance", 0.0, None), ("paper_c.uncertainty.convergence", [], None),

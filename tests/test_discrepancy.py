@@ -177,3 +177,23 @@ def test_totals_read_back_from_the_csv_equal_those_of_the_analyses(tmp_path):
                                                               "[1e+03, 1e+05]")] == ["", ""]
     assert d.totals_of_rows(rows) == d.totals(analyses)
     assert d.totals(analyses).startswith("discrepancies (2): 1 reproduced by a hypothesis, 1 ")
+
+
+def test_a_self_contradicting_number_is_explained_against_its_implied_value():
+    """Paper B's text prints a 55 % reduction its own Table 2 puts at 32.9 %: the row is judged
+    against 32.9 %, and so are the hypotheses and inversions that would explain a miss (a
+    hypothesis giving 55 % reproduces nothing; one giving 32.9 % does)."""
+    values = [{"paper": "B", "quantity": "t", "value": 55.0, "source": "printed",
+               "value_text": "55", "unit": "%"}]
+    reproduced = [Reproduced.of("B", "t", 20.0, "x", implied=32.9)]
+    assert d.misses(values, reproduced) == {"t": (32.9, "MAJOR")}
+    table = [{"paper": "B", "quantity": "t", "unit": "%", "paper_value": 55.0,
+              "reproduced": 20.0, "verdict": "MAJOR"}]
+    (a,) = d.analyse(table, values, reproduced, [])
+    assert a.printed == 32.9
+    hyps = (d.Hypothesis("t", "swap", "variant", 55.0), d.Hypothesis("t", "fix", "variant", 32.9))
+    from dataclasses import replace
+    a = replace(a, hypotheses=hyps)
+    assert [h.name for h in a.reproduced_by] == ["fix"]
+    # a number the paper states once stays judged against its printed value
+    assert d.misses(values, [Reproduced.of("B", "t", 20.0, "x")]) == {"t": (55.0, "MAJOR")}

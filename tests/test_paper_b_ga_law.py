@@ -10,6 +10,7 @@ import xarray as xr
 from rotorvib.io.coords import label_coord
 from rotorvib.papers.b.ga_law import (
     NEIGHBOURS,
+    amplitude_share,
     envelope,
     fit_decay,
     ga_law_dataset,
@@ -102,21 +103,38 @@ def test_the_row_says_which_term_makes_the_optimum(around):
 
     a, s = around.amplitude.values, around.sigma_fit.values
     (by_rate,) = ga_law_rows(with_terms(np.broadcast_to(a[..., :1], a.shape).copy(),
-                                        s * np.array([1.0, 0.9, 1.1, 0.95])))
-    assert by_rate.margin.value == pytest.approx(-0.5) and not dict(by_rate.holds)[""]
+                                        s * np.array([1.0, 0.9, 1.1, 0.95])), flat=0.0)
+    assert by_rate.margin.value == pytest.approx(-0.5) and by_rate.holds == (("flat = 0 s",
+                                                                               False),)
     (by_amplitude,) = ga_law_rows(with_terms(a * np.array([1.0, 2.0, 1.5, 1.2]),
-                                             np.broadcast_to(s[..., :1], s.shape).copy()))
-    assert by_amplitude.margin.value == pytest.approx(0.5) and dict(by_amplitude.holds)[""]
+                                             np.broadcast_to(s[..., :1], s.shape).copy()),
+                                  flat=0.0)
+    assert by_amplitude.margin.value == pytest.approx(0.5) and by_amplitude.holds[0][1]
     assert "the optimum leaves the least whirl of its neighbours in 1 of 1 problems" in \
         by_amplitude.explanation
-    (real,) = ga_law_rows(around)
+    (real,) = ga_law_rows(around, flat=1e-3)
     assert "heavier" not in real.explanation and "Heavier balls (+10%)" in real.explanation
     # a flat change (no term carries it) is left out, and counted
     flat = with_terms(np.broadcast_to(a[..., :1], a.shape).copy(),
                       np.broadcast_to(s[..., :1], s.shape).copy())
     (none,) = ga_law_rows(flat, flat=1e-5)
-    assert dict(none.holds)[""] is None
+    assert none.holds == (("flat = 1e-05 s", None),)
     assert "all 3 neighbours whose change is flat, within 1e-05 s, left out" in none.explanation
+
+
+def test_terms_that_cancel_to_a_flat_change_carry_no_share(around):
+    """Two large terms cancelling to a change of under a millisecond (paper B's flat IC2 optima)
+    have no share to give: left out as flat at the used 1 ms, counted at 1e-5 s (each then
+    near 1/2); the row names both values of the choice."""
+    amp = np.array([0.0, 0.05, 0.05, 0.05]).reshape(around.amplitude.shape)
+    rate = -amp + np.array([0.0, 4e-4, 3e-4, 8e-4]).reshape(amp.shape)
+    cancelling = around.assign(amplitude_term=(around.amplitude.dims, amp),
+                               rate_term=(around.amplitude.dims, rate))
+    (row,) = ga_law_rows(cancelling, flat=1e-3, flat_alternatives=(1e-5,))
+    assert [name for name, _ in row.holds] == ["flat = 0.001 s", "flat = 1e-05 s"]
+    assert row.holds[0][1] is None and "all 3 neighbours whose change is flat" in row.explanation
+    share, left_out = amplitude_share(cancelling, 1e-5)
+    assert left_out == 0 and share.value == pytest.approx(0.05 / (0.05 + 0.0496) - 0.5, abs=0.01)
 
 
 def test_a_band_edge_the_study_shares_is_not_a_failure_edge():

@@ -137,3 +137,72 @@ def test_a_design_with_a_censored_run_has_no_mean_and_decides_nothing():
     (row,) = pareto_rows(ds)
     assert row.holds == (("", None),) and "1 of 4" in row.explanation
     assert verdict(None, None, holds=row.holds) == (None, "UNDETERMINED")
+
+
+def _zeta_study(alternatives):
+    """A study of paper B's six inputs whose balance time is 1000 zeta seconds (the others
+    idle), with the priors ``alternatives`` and their fixed runs made by the model itself."""
+    import json
+
+    from rotorvib.methods.sensitivity import problem, sample, study_dataset
+    from rotorvib.papers.b.uncertainty import (
+        INPUTS,
+        fixed_prior_runs,
+        fixed_priors,
+        with_fixed_priors,
+    )
+
+    spec = problem({"R": (0.09, 0.11), "zeta": (0.005, 0.02), "r0": (5e-4, 2e-3),
+                    "eps_tolerance": (-0.1, 0.0), "mass_tolerance": (-0.05, 0.05),
+                    "k_tolerance": (-0.05, 0.05)})
+    x = sample(spec, 256, 11)
+
+    def model(points):
+        return {"balance_time": 1000.0 * np.asarray(points, float)[:, INPUTS.index("zeta")]}
+
+    ds = study_dataset(spec, x, model(x), {"balance_time": 10.0}, {"balance_time": "s"},
+                       n_bases=[256], resamples=50, seed=11)
+    if fixed := fixed_priors(alternatives):
+        ds = with_fixed_priors(ds, fixed, fixed_prior_runs(model, x, len(INPUTS), fixed))
+    return ds.assign_attrs(prior_alternatives=json.dumps(alternatives), R_range="the band")
+
+
+def test_a_printed_value_inside_the_band_of_a_wide_prior_only_depends_on_the_prior():
+    """The prior of zeta is a choice with alternatives: 7 s lies inside the 5-95 % band of
+    1000 zeta under zeta uniform on [0.005, 0.02] (5.75-19.25 s), outside it under +/- 20 %
+    (8.2-11.8 s) and under zeta fixed at 0.01 (10 s): DEPENDS, naming the priors; 10 s holds
+    under all three; the narrower range is the sample's points inside it, the fixed value its
+    own runs at Saltelli's base points."""
+    from rotorvib.comparison import claim_verdict
+    from rotorvib.papers.b.uncertainty import prior_samples, within_band_rows
+
+    ds = _zeta_study({"zeta": [[0.008, 0.012], [0.01, 0.01]]})
+    samples = prior_samples(ds, "balance_time")
+    assert list(samples) == ["zeta in [0.005, 0.02]", "zeta in [0.008, 0.012]", "zeta = 0.01"]
+    narrow = samples["zeta in [0.008, 0.012]"]
+    assert narrow.size == pytest.approx(ds.sizes["sample"] * 4 / 15, rel=0.1)
+    assert narrow.min() >= 8.0 and narrow.max() <= 12.0
+    assert np.all(samples["zeta = 0.01"] == 10.0) and samples["zeta = 0.01"].size == 256
+    (row,) = within_band_rows(ds, {"fig7_time": 7.0}, {"balance_time": "fig7_time"})
+    assert dict(row.holds) == {"zeta in [0.005, 0.02]": True, "zeta in [0.008, 0.012]": False,
+                               "zeta = 0.01": False}
+    assert claim_verdict(row.holds) == "DEPENDS"
+    assert "with zeta = 0.01: 10-10 s over 256 points" in row.explanation
+    (row,) = within_band_rows(ds, {"fig7_time": 10.3}, {"balance_time": "fig7_time"})
+    assert dict(row.holds)["zeta in [0.008, 0.012]"] is True
+    assert dict(row.holds)["zeta = 0.01"] is False     # a fixed zeta leaves no band to be in
+    # no alternatives: one prior, as before
+    (row,) = within_band_rows(_zeta_study({}), {"t": 7.0}, {"balance_time": "t"})
+    assert row.holds == (("", True),)
+
+
+def test_the_cases_of_one_machine_share_their_draw_of_zeta():
+    """One machine, one zeta: the cases' samples come from one seed, and the smaller sample of
+    the mean over the ICs is the start of the others', point for point."""
+    from rotorvib.methods.sensitivity import problem, sample
+
+    spec = problem({"R": (0.09, 0.11), "zeta": (0.005, 0.02), "r0": (5e-4, 2e-3),
+                    "eps_tolerance": (-0.1, 0.0), "mass_tolerance": (-0.05, 0.05),
+                    "k_tolerance": (-0.05, 0.05)})
+    large, small = sample(spec, 512, 11), sample(spec, 256, 11)
+    assert np.array_equal(large[:len(small)], small)

@@ -154,7 +154,9 @@ def test_curve_measures_order_a_censored_run_after_every_balanced_one():
     assert np.isnan(rise([np.nan, 5.0, np.nan]))
     assert largest_fall([np.nan, 5.0, 6.0]) == 0.0 and largest_fall([np.nan, np.nan]) == 0.0
     assert largest_fall([6.0, np.nan, 5.0, 4.0]) == 1.0
-    assert dip_depth([6.0, 4.0, 5.0]) == 1.0 and dip_depth([4.0, 5.0, 6.0]) == 0.0
+    assert dip_depth([6.0, 4.0, 5.0]) == 1.0
+    # the lowest point an end: how far the interior stays above it, not 0 (undecidable)
+    assert dip_depth([4.0, 5.0, 6.0]) == -1.0 and dip_depth([4.0, 4.5, 5.0, 6.0]) == -0.5
     assert dip_depth([np.nan, 4.0, 5.0]) == 1.0
     assert within([0.12, 0.18], (0.1, 0.2)) == pytest.approx(0.02)
     assert within([0.05, 0.15], (0.1, 0.2)) == pytest.approx(-0.05)

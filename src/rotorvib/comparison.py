@@ -1,31 +1,25 @@
 """Side-by-side comparison of the papers' stated values with the reproduced ones.
 
-Every value a paper states lives in ``data/paper_values.csv`` with its ``source``: ``printed``
-(the paper prints it), ``chosen`` (the paper prints none; the value is the reproduction's choice)
-or ``theory`` (a value theory predicts, e.g. an error order).  Each paper's pipeline writes the
-reproduced values; this module joins the two and assigns a verdict:
+Every value a paper states lives in ``data/paper_values.csv`` with its ``source``: ``printed``,
+``chosen`` (the paper prints none; the reproduction's choice) or ``theory`` (e.g. an error
+order, or a claim of the reproduction's own beyond the papers, counted apart).  Each paper's
+pipeline writes the reproduced values; this module joins the two and assigns a verdict:
 
 * a printed number: MATCH (relative error <= 1 %), MINOR (<= 10 %), MAJOR (> 10 %); where the
-  paper's own other numbers imply a value (``implied``) that differs from the printed one by
-  more than 10 % (the paper contradicts itself; both numbers are quoted), the reproduction is
-  judged against the implied value, and is PAPER-INCONSISTENT where it agrees with it within
-  10 %, MAJOR otherwise;
-* a number the reproduction locates only within an interval (``interval``: an optimum on a
-  grid whose neighbours lie within the curve's own roughness) that holds the paper's value is
-  UNDETERMINED unless it is a MATCH or EXPECTED already: the reproduction cannot tell them apart;
+  paper's own other numbers imply a value (``implied``) more than 10 % from the printed one,
+  the row is judged against the implied value (:func:`judged_against`): PAPER-INCONSISTENT
+  where it agrees with it within 10 %, MAJOR otherwise;
+* a number located only within an ``interval`` (an optimum on a grid whose neighbours lie
+  within the curve's own roughness) that holds the paper's value is UNDETERMINED unless it is
+  a MATCH or EXPECTED already; a number with no value (every run censored: NaN, never a
+  penalty passed off as a number) is UNDETERMINED too;
 * a chosen or theoretical value: EXPECTED (within 1 %) or UNEXPECTED, counted apart;
-* a claim of the reproduction's own beyond the papers (source ``theory``, e.g. a law it
-  proposes) is judged as a claim and counted apart from the papers' claims;
-* a claim without a number: SUPPORTED, NOT SUPPORTED or DEPENDS from whether it holds under each
-  variant it was evaluated under (kinematics, constructions); DEPENDS names the variants under
-  which it holds.  UNDETERMINED when no variant decides it.  A claim carries its
-  :class:`Margin`, how far it is from failing, and the margin's own uncertainty: a margin
-  inside its uncertainty decides nothing (UNDETERMINED under that variant);
-* a number whose reproduction has no value (every run censored: NaN, never a penalty or a cap
-  passed off as a number) is UNDETERMINED too, with its relative error left empty;
+* a claim: from the variants it was evaluated under (kinematics, constructions, choices'
+  alternatives) that decide it (:func:`claim_verdict`): SUPPORTED, NOT SUPPORTED, DEPENDS
+  where they disagree (naming them), UNDETERMINED where none decides.  A claim carries its
+  :class:`Margin` and the margin's uncertainty: a margin inside it decides nothing;
 * a row whose paper value a calibration of the reproduction was fitted to (``calibrated``
-  says which) is CALIBRATED, whatever it would be otherwise: it agrees by construction, and is
-  counted apart, never as evidence.
+  says which) is CALIBRATED, whatever it would be otherwise: counted apart, never as evidence.
 """
 
 from __future__ import annotations
@@ -134,13 +128,13 @@ class Reproduced:
     def of(cls, paper: str, quantity: str, value, explanation: str,
            implied: float | None = None,
            interval: tuple[float, float] | None = None, cause: str = "",
-           choices: tuple[str, ...] = ()) -> "Reproduced":
+           choices: tuple[str, ...] = (), calibrated: str = "") -> "Reproduced":
         """A numeric row with ``value`` as float."""
         return cls(paper, quantity, float(value), explanation,
                    implied=None if implied is None else float(implied),
                    interval=None if interval is None else (float(interval[0]),
                                                             float(interval[1])),
-                   cause=cause, choices=tuple(choices))
+                   calibrated=calibrated, cause=cause, choices=tuple(choices))
 
     @classmethod
     def claim(cls, paper: str, quantity: str, holds, explanation: str, *,
@@ -160,13 +154,14 @@ class Reproduced:
                    margin=pairs[0][1], calibrated=calibrated, choices=tuple(choices))
 
 
-def within_band(ds, quantity: str, margin: tuple[float, float]) -> Margin:
+def within_band(ds, quantity: str, margin: tuple[float, float], points=None) -> Margin:
     """The :class:`Margin` of "a value lies within the band of an uncertainty study" from the
-    study dataset ``ds`` and ``(margin, uncertainty)`` of
-    :func:`rotorvib.methods.bands.band_margin`, in the quantity's units."""
+    study ``ds`` and ``(margin, uncertainty)`` of :func:`rotorvib.methods.bands.band_margin`,
+    in the quantity's units; ``points``: the sample's size, where not the study's."""
     q = list(ds.quantity_name.values).index(quantity)
+    n = ds.sizes["sample"] if points is None else points
     return Margin(*margin, str(ds.quantity_units.values[q]),
-                  f"bootstrap of the band's edges over {ds.sizes['sample']} samples")
+                  f"bootstrap of the band's edges over {n} samples")
 
 
 def relative_error(reference: float, value: float) -> float:
@@ -175,17 +170,24 @@ def relative_error(reference: float, value: float) -> float:
 
 
 def claim_verdict(holds) -> str:
-    """SUPPORTED / NOT SUPPORTED when every variant decides and all agree; DEPENDS when it holds
-    under some variants but not all (failing or undecided under the others); UNDETERMINED when
-    it holds under none and some variant cannot decide (or none can)."""
+    """The verdict of the variants that decide (a variant that cannot, its margin inside its
+    uncertainty, adds nothing either way): SUPPORTED where all of them hold, NOT SUPPORTED
+    where all fail, DEPENDS where they disagree; UNDETERMINED where none decides. Symmetric:
+    exchanging holds and fails exchanges SUPPORTED and NOT SUPPORTED and leaves the others."""
     if not holds:
         raise ValueError("a claim needs at least one evaluated variant")
-    known = [h for _, h in holds if h is not None]
-    if len(known) == len(holds) and all(known):
-        return "SUPPORTED"
-    if len(known) == len(holds) and not any(known):
-        return "NOT SUPPORTED"
-    return "DEPENDS" if any(known) else "UNDETERMINED"
+    decided = {h for _, h in holds if h is not None}
+    if len(decided) != 1:
+        return "DEPENDS" if decided else UNDETERMINED
+    return "SUPPORTED" if True in decided else "NOT SUPPORTED"
+
+
+def judged_against(paper_value: float, implied: float | None) -> float:
+    """The value a number is judged against: the ``implied`` one where it lies more than
+    :data:`MINOR_TOL` from the printed one (the paper contradicts itself), else the printed."""
+    if implied is not None and relative_error(implied, paper_value) > MINOR_TOL:
+        return implied
+    return paper_value
 
 
 def verdict(paper_value: float | None, reproduced: float | None, *, source: str = "printed",
@@ -203,7 +205,7 @@ def verdict(paper_value: float | None, reproduced: float | None, *, source: str 
         return None, claim_verdict(holds)
     if reproduced is None or not math.isfinite(reproduced):
         return None, UNDETERMINED       # no number to compare (e.g. every run censored)
-    if implied is not None and relative_error(implied, paper_value) > MINOR_TOL:
+    if judged_against(paper_value, implied) != paper_value:
         rel = relative_error(implied, reproduced)
         return rel, "PAPER-INCONSISTENT" if rel <= MINOR_TOL else "MAJOR"
     rel = relative_error(paper_value, reproduced)
@@ -249,7 +251,7 @@ def merge_variants(rows_by_variant: dict[str, list[Reproduced]],
                                      row.explanation + quoted, implied=row.implied,
                                      variants=tuple((n, r.reproduced) for n, r in alt.items()),
                                      interval=row.interval, cause=row.cause,
-                                     choices=(choice, *row.choices)))
+                                     calibrated=row.calibrated, choices=(choice, *row.choices)))
             continue
         holds = tuple((joined(name, k), h) for name, r in (((first, row),) + tuple(alt.items()))
                       for k, h in r.holds)
@@ -301,7 +303,7 @@ def build_table(paper_values: list[dict], reproduced: list[Reproduced]) -> list[
             holds = describe_holds(r.holds)
             explanation = (f"not evidence: {r.calibrated}, so it agrees by construction; "
                            + (f"{holds}: " if holds else "") + explanation)
-        elif r.implied is not None and relative_error(r.implied, p["value"]) > MINOR_TOL:
+        elif judged_against(p["value"], r.implied) != p["value"]:
             explanation = (f"the paper prints {p['value']:g} but its own other numbers imply "
                            f"{r.implied:.4g}, against which the row is judged; {explanation}")
         elif verdict_ == UNDETERMINED and r.interval is not None:
@@ -404,15 +406,14 @@ def verdict_definitions() -> str:
             "own numbers imply another value, which the reproduction agrees with). Values the "
             "paper does not print (source chosen or theory): EXPECTED (<= "
             f"{100 * MATCH_TOL:g} %) or UNEXPECTED, counted apart. Claims: SUPPORTED, NOT SUPPORTED, "
-            "DEPENDS (holds under some variants only; the explanation names them), UNDETERMINED; "
+            "DEPENDS (the variants that decide disagree; the explanation names them), "
+            "UNDETERMINED (no variant decides); a variant that cannot decide counts neither way; "
             "the reproduction's own hypotheses beyond the papers are counted apart from the "
             "papers' claims. Each claim names the choices it rests on and the alternatives it "
             "was evaluated under, and carries its margin (positive where it holds) and the "
-            "margin's "
-            "uncertainty; a margin inside its uncertainty decides nothing: UNDETERMINED. "
-            "A number with nothing to compare (every run censored) is UNDETERMINED. "
-            "A row whose paper value a calibration of the reproduction was fitted to is "
-            "CALIBRATED, counted apart and never as evidence.")
+            "margin's uncertainty; a margin inside its uncertainty decides nothing. A number "
+            "with nothing to compare (every run censored) is UNDETERMINED. A row whose paper "
+            "value a calibration was fitted to is CALIBRATED, counted apart, never evidence.")
 
 
 def write_table_files(table: list[dict], csv_path: str | Path, md_path: str | Path,

@@ -28,7 +28,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import MATCH_TOL, relative_error, verdict
+from rotorvib.comparison import MATCH_TOL, judged_against, relative_error, verdict
 from rotorvib.io.coords import label_coord, labels
 from rotorvib.io.tables import write_table
 from rotorvib.paper_values import decimals
@@ -94,8 +94,10 @@ def reproduces(printed: float, value: float, tol: float = REPRODUCES_WITHIN) -> 
 
 
 def misses(paper_values: list[dict], reproduced) -> dict[str, tuple[float, str]]:
-    """``{quantity: (printed value, verdict)}`` of the printed numbers the reproduction misses
-    (MINOR or MAJOR in :func:`rotorvib.comparison.verdict`)."""
+    """``{quantity: (value judged against, verdict)}`` of the printed numbers the reproduction
+    misses (MINOR or MAJOR in :func:`rotorvib.comparison.verdict`): the printed value, or the
+    one the paper's other numbers imply where it contradicts itself
+    (:func:`rotorvib.comparison.judged_against`), which the hypotheses must then reproduce."""
     printed = {p["quantity"]: p["value"] for p in paper_values
                if p["source"] == "printed" and p["value"] is not None}
     out = {}
@@ -104,7 +106,7 @@ def misses(paper_values: list[dict], reproduced) -> dict[str, tuple[float, str]]
             _, v = verdict(printed[r.quantity], r.reproduced, implied=r.implied,
                            interval=r.interval)
             if v in MISSES:
-                out[r.quantity] = (printed[r.quantity], v)
+                out[r.quantity] = (judged_against(printed[r.quantity], r.implied), v)
     return out
 
 
@@ -221,7 +223,9 @@ BASELINE_TOL = 1e-3
 
 @dataclass(frozen=True)
 class Analysis:
-    """One printed number the reproduction misses, with every hypothesis and inversion."""
+    """One printed number the reproduction misses, with every hypothesis and inversion;
+    ``printed`` is the value it is judged against (the implied one where the paper contradicts
+    itself, :func:`rotorvib.comparison.judged_against`)."""
 
     paper: str
     quantity: str
@@ -283,6 +287,7 @@ def analyse(table: list[dict], paper_values: list[dict], reproduced, datasets) -
     baseline differs from the reproduced value by more than :data:`BASELINE_TOL`."""
     text = {(p["paper"], p["quantity"]): p["value_text"] for p in paper_values}
     variants = {(r.paper, r.quantity): r.variants for r in reproduced}
+    implied = {(r.paper, r.quantity): r.implied for r in reproduced}
     baselines, computed, inverted = {}, {}, {}
     for b, hyps, invs in datasets:
         baselines.update(b)
@@ -303,7 +308,8 @@ def analyse(table: list[dict], paper_values: list[dict], reproduced, datasets) -
             Hypothesis(q, f"{name} variant", "variant", v)
             for name, v in variants.get((row["paper"], q), ())]
         hyps = generic_hypotheses(q, row["unit"], text[(row["paper"], q)], value) + own + quoted
-        out.append(Analysis(row["paper"], q, row["paper_value"], value, row["verdict"],
+        target = judged_against(row["paper_value"], implied.get((row["paper"], q)))
+        out.append(Analysis(row["paper"], q, target, value, row["verdict"],
                             tuple(hyps), tuple(inverted.get(q, ()))))
     return [replace(a, support=_support(out, a.paper)) for a in out]
 

@@ -431,6 +431,7 @@ rule b_reproduced_values:
         beta_band=B["claims"]["beta_opt_range"],
         typical=B["claims"]["ics_typical_share"],
         time_uncertainty=B["claims"]["time_uncertainty"],
+        sample_dt=B["balance"]["sample_dt"],
         r_threshold=B["balance"]["r_threshold"],
         close=CLOSE,
         zeta=B["machine"]["zeta"],

@@ -43,7 +43,8 @@ rows = reproduce(**data, R=p.R, ga_bounds=p.ga, beta_band=p.beta_band, typical=p
 rows += merge_variants({kin: pareto_rows(ds) for kin, ds in pareto.items()},
                        kinematics_choice(pareto))
 rows += uncertainty_rows(uncertainty, paper) + law_rows(law, Close.from_config(p.close)) + trend_rows(law)
-rows += support_damping_rows(law, p.zeta, neutral=p.neutral) + ga_law_rows(ga_law, flat=p.time_uncertainty)
+rows += support_damping_rows(law, p.zeta, neutral=p.neutral) + ga_law_rows(
+    ga_law, flat=p.sample_dt, flat_alternatives=(p.time_uncertainty,))
 rows += boundary_rows(boundaries) + zeta_rows(zeta)
 rows += prediction_rows(law, Close.from_config(p.close)) + design_rows(design)
 write_reproduced(rows, snakemake.output[0])

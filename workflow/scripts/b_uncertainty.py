@@ -25,5 +25,6 @@ run_study(snakemake, setup.runs,
           lambda runs: uncertainty_dataset(setup, case=p.case, ranges=u["ranges"],
                                            R_band=R_band, kinematics=p.kinematics,
                                            n_base=u["n_base"], convergence=u["convergence"],
-                                           resamples=u["resamples"], seed=u["seed"], runs=runs),
+                                           resamples=u["resamples"], seed=u["seed"],
+                                           alternatives=u["prior_alternatives"], runs=runs),
           width=N_METRICS, study=f"uncertainty_{snakemake.wildcards.case}", seed=u["seed"])

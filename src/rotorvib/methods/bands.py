@@ -10,6 +10,8 @@ jobs compute them.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 
@@ -33,17 +35,31 @@ def percentile_spread(y, percentiles, *, resamples: int, seed: int) -> np.ndarra
     return np.percentile(y[draws], percentiles, axis=1).std(axis=1)
 
 
-def band_margin(ds: xr.Dataset, quantity: str, value: float) -> tuple[float, float]:
-    """How far ``value`` lies inside ``quantity``'s band (``min(value - low, high - value)``,
-    negative outside) and the uncertainty of that margin: twice the bootstrap standard deviation
-    of the nearer edge (:func:`percentile_spread`, the dataset's resamples and seed)."""
-    q = list(ds.quantity_name.values).index(quantity)
-    band, p = ds.band.values[q], ds.percentile.values
-    lo, hi = band[0], band[-1]
-    spread = percentile_spread(ds.y.values[q], [p[0], p[-1]], resamples=int(ds.attrs["sobol_resamples"]),
-                         seed=int(ds.attrs["sobol_seed"]))
+def sample_margin(y, percentiles, value: float, *, resamples: int,
+                  seed: int) -> tuple[float, float]:
+    """How far ``value`` lies inside the band between the outer ``percentiles`` of the sample
+    ``y`` (NaN: a point without a value) -- ``min(value - low, high - value)``, negative
+    outside -- and that margin's uncertainty: twice the bootstrap standard deviation of the
+    nearer edge (:func:`percentile_spread`); NaN for both where no point has a value."""
+    y = np.asarray(y, float)
+    finite = y[np.isfinite(y)]
+    if finite.size == 0:
+        return math.nan, math.nan
+    lo, hi = np.percentile(finite, [percentiles[0], percentiles[-1]])
+    spread = percentile_spread(finite, [percentiles[0], percentiles[-1]], resamples=resamples,
+                               seed=seed)
     nearer = 0 if value - lo <= hi - value else 1
     return float(min(value - lo, hi - value)), float(2 * spread[nearer])
+
+
+def band_margin(ds: xr.Dataset, quantity: str, value: float, y=None) -> tuple[float, float]:
+    """:func:`sample_margin` of ``value`` in ``quantity``'s band of the study ``ds`` (its
+    percentiles, resamples and seed), over the study's sample or the values ``y`` of the same
+    quantity (another prior's)."""
+    q = list(ds.quantity_name.values).index(quantity)
+    return sample_margin(ds.y.values[q] if y is None else y, ds.percentile.values, value,
+                         resamples=int(ds.attrs["sobol_resamples"]),
+                         seed=int(ds.attrs["sobol_seed"]))
 
 
 def band_statement(ds: xr.Dataset, quantity: str, value: float) -> tuple[tuple[float, float], str]:

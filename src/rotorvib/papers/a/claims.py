@@ -114,7 +114,9 @@ def cost_rows(region: xr.Dataset) -> list[Reproduced]:
         + ("are the same" if differ == 0 else f"differ at {differ} points")
         + ". Floquet theory is for periodic coefficients, which the balanced state in the "
           "rotating frame does not have",
-        choices=(GRID, "the operation counts of rotorvib.methods.routh (textbook estimates)"))]
+        choices=(GRID, "'less computation' read as floating-point operations per grid point "
+                       "(chosen: the paper does not say how it measures computation)",
+                 "the operation counts of rotorvib.methods.routh (textbook estimates)"))]
 
 
 def resonance_rows(resp: xr.Dataset) -> list[Reproduced]:

@@ -15,8 +15,13 @@ FIG2_GRID = "paper_b.stability_maps.fig2 (its beta and omega_bar ranges, chosen)
 LAW_CHOICES = (R_CHOICE, "the runs of the studies the law is tested on (paper_b.balance_studies, "
                "basin, table1, calibration)")
 #: The GA-optimum law's row: the neighbours of each optimum and the decay fit's window.
+#: A change of the line's time too small to share out between its terms (ga_law_rows).
+FLAT_KEY = "flat"
 GA_LAW_CHOICES = (R_CHOICE, ZETA_CHOICE, "paper_b.ga_law.step (the neighbours, chosen)",
-                  "paper_b.ga_law.settle, horizon, width (the decay fit's window, chosen)")
+                  "paper_b.ga_law.settle, horizon, width (the decay fit's window, chosen)",
+                  f"{FLAT_KEY} = paper_b.balance.sample_dt (a change of the line's time within "
+                  "the sampling of the r(t) it is fitted to is flat, chosen; "
+                  "paper_b.claims.time_uncertainty evaluated too)")
 #: The continuation's rows: the traced ranges and the solver's tolerance.
 BOUNDARY_CHOICES = ("paper_b.boundaries.beta, m_bar, zeta (the traced ranges, chosen)",
                     "paper_b.boundaries.omega_max (the highest traced speed, chosen)",

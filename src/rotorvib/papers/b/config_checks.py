@@ -115,6 +115,21 @@ def existence_problems(b: dict) -> list[tuple[str, str]]:
             check(f"balance_studies.{name}", np.min(values["mass"]), np.max(values["eps_bar"]))
     return problems
 
+def prior_problems(b: dict) -> list[tuple[str, str]]:
+    """Alternative priors of the uncertainty study that are not a range ``[low, high]`` with
+    ``low <= high`` inside the input's own range (a narrower range is the sample's points
+    inside it, so it cannot reach beyond the sample)."""
+    u, found = b["uncertainty"], []
+    for name, priors in u["prior_alternatives"].items():
+        low, high = u["ranges"][name]
+        for i, (a, z) in enumerate(priors):
+            if not low <= a <= z <= high:
+                found.append((f"uncertainty.prior_alternatives.{name}[{i}]",
+                              f"{[a, z]} must be [low, high] with {low:g} <= low <= high <= "
+                              f"{high:g} (uncertainty.ranges.{name})"))
+    return found
+
+
 def design_rule_problems(b: dict) -> list[tuple[str, str]]:
     """The design rule's initial conditions that ``initial_conditions`` does not name, and a
     machine whose operating speed the run-up reaches without passing the critical speed (no
@@ -230,7 +245,7 @@ def problems(b: dict) -> list[tuple[str, str]]:
     seeds, a ball mass below the existence bound, a run the engine would refuse, a stability-
     boundary plane that cannot start, a GA-optimum study with nothing to fit, a ROSS speed of
     zero, a tolerance finer than double precision, a stability map of one point along an axis,
-    a grid study of more run-ups than a job can hold."""
+    a grid study of more run-ups than a job can hold, an alternative prior beyond its range."""
     found = [(f"balance_studies.{name}", problem)
              for name, study in b["balance_studies"].items()
              if (problem := study_problem(study))]
@@ -244,4 +259,4 @@ def problems(b: dict) -> list[tuple[str, str]]:
         found.append(("balance.integrator.rtol", problem))
     return (found + existence_problems(b) + run_budget_problems(b) + study_size_problems(b)
             + boundary_problems(b) + ga_law_problems(b) + ross_problems(b) + map_problems(b)
-            + design_rule_problems(b))
+            + design_rule_problems(b) + prior_problems(b))

@@ -62,12 +62,15 @@ def rise_text(rise_s: float) -> str:
 
 
 def dip_depth(curve) -> float:
-    """How far a curve's lowest point lies below both its ends (<= 0 when the lowest point is an
-    end): a curve that first falls and then grows."""
+    """How far a curve's lowest interior point lies below both its ends, ``min(c_0, c_end) -
+    min(interior)``: positive for a curve that first falls and then grows; negative, by how far
+    the interior stays above it, where the lowest point is an end (never clamped at 0, which
+    would read as "too close to tell")."""
     c = as_longest(curve)
-    k = int(np.argmin(c))
+    if c.size < 3:
+        raise ValueError(f"a dip needs an interior point: {c.size} points given")
     with np.errstate(invalid="ignore"):
-        return float(min(c[0] - c[k], c[-1] - c[k]))
+        return float(min(c[0], c[-1]) - c[1:-1].min())
 
 
 def within(values, band) -> float:

@@ -24,12 +24,13 @@ import dataclasses
 import numpy as np
 import xarray as xr
 
+from rotorvib.choices import under_choice
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.coords import label_coord, pick
 from rotorvib.io.variables import described
 from rotorvib.models.balancer import layout
 from rotorvib.models.balancer.simulate import run
-from rotorvib.papers.b.choices import GA_LAW_CHOICES
+from rotorvib.papers.b.choices import FLAT_KEY, GA_LAW_CHOICES
 from rotorvib.papers.b.law import balance_time_law, slow_decay_rate
 from rotorvib.papers.b.attributes import dataset_attrs
 from rotorvib.papers.b.setup import Setup
@@ -171,32 +172,48 @@ def ga_law_dataset(setup: Setup, ga: xr.Dataset, ics: dict, beta_bounds, mass_bo
     )
 
 
-def ga_law_rows(ds: xr.Dataset, *, flat: float = 0.0, resamples: int = 200,
-                seed: int = 0) -> list[Reproduced]:
-    """Beyond the paper: is the GA's optimum the point whose passage leaves the least whirl,
-    rather than the one whose whirl decays fastest?  Over every neighbour in the GA's box that
-    balances: the share of the change of the line's time carried by the amplitude term,
-    ``|amp| / (|amp| + |rate|)``, left out where the change is flat (``|amp| + |rate|`` within
-    ``flat`` seconds, the balance times' own accuracy: the share is undefined there, and the
-    row counts them); the margin is its median less 1/2, the uncertainty twice its bootstrap
-    standard deviation.  The explanation gives how often the optimum leaves the least whirl,
-    the fit against the eigenvalues and the integration, and the peak-force law there."""
+def amplitude_share(ds: xr.Dataset, flat: float, *, resamples: int = 200,
+                    seed: int = 0) -> tuple[Margin | None, int]:
+    """Over every neighbour of a GA optimum in its box that balances: the share of the change
+    of the line's time carried by the amplitude term, ``|amp| / (|amp| + |rate|)``, left out
+    where the change is flat (the net change ``|amp + rate|`` within ``flat`` seconds: two
+    terms that cancel to nothing carry no share); the :class:`Margin` of its median against
+    1/2 (uncertainty twice its bootstrap standard deviation; None where no neighbour is left)
+    and the number of flat neighbours left out."""
     amp, rate = ds.amplitude_term.values[..., 1:], ds.rate_term.values[..., 1:]
     balanced = np.isfinite(ds.balance_time.values)
     candidates = ((ds.in_box.values[..., 1:] == 1) & balanced[..., 1:] & balanced[..., :1]
                   & np.isfinite(amp) & np.isfinite(rate))
     with np.errstate(invalid="ignore"):
-        flat_change = candidates & (np.abs(amp) + np.abs(rate) <= flat)
+        flat_change = candidates & (np.abs(amp + rate) <= flat)
     use = candidates & ~flat_change
     if not use.any():
-        why = (f"all {int(flat_change.sum())} neighbours whose change is flat, within {flat:g} s, "
-               "left out: no term carries it" if flat_change.any()
-               else "no neighbour of a GA optimum balances")
-        return [Reproduced.claim("B", "law_explains_ga_optimum", None, f"undetermined: {why}",
-                                 choices=GA_LAW_CHOICES)]
+        return None, int(flat_change.sum())
     share = (np.abs(amp) / (np.abs(amp) + np.abs(rate)))[use]
     rng = np.random.default_rng(seed)
     spread = np.std([np.median(rng.choice(share, share.size)) for _ in range(resamples)])
+    return (Margin(float(np.median(share)) - 0.5, 2 * float(spread), "share of the change",
+                   f"bootstrap over {share.size} neighbours"), int(flat_change.sum()))
+
+
+def ga_law_rows(ds: xr.Dataset, *, flat: float, flat_alternatives=(), resamples: int = 200,
+                seed: int = 0) -> list[Reproduced]:
+    """Beyond the paper: is the GA's optimum the point whose passage leaves the least whirl,
+    rather than the one whose whirl decays fastest?  The median share of the amplitude term
+    (:func:`amplitude_share`) with the flat changes left out below ``flat`` seconds, and below
+    each of ``flat_alternatives`` (DEPENDS where they disagree).  The explanation gives how
+    often the optimum leaves the least whirl, the fit against the eigenvalues and the
+    integration, and the peak-force law there."""
+    margin, n_flat = amplitude_share(ds, flat, resamples=resamples, seed=seed)
+    holds = under_choice(lambda f: amplitude_share(ds, f, resamples=resamples, seed=seed)[0],
+                         FLAT_KEY, flat, flat_alternatives, "s")
+    left_out = (f"{n_flat} neighbours whose change is flat, within {flat:g} s, left out: no "
+                "term carries it")
+    if margin is None:
+        why = f"all {left_out}" if n_flat else "no neighbour of a GA optimum balances"
+        return [Reproduced.claim("B", "law_explains_ga_optimum", holds, f"undetermined: {why}",
+                                 choices=GA_LAW_CHOICES)]
+    share = margin.value + 0.5
     optimum = pick(ds, neighbour="optimum")
     least = (ds.amplitude.values[..., :1] <= ds.amplitude.values[..., 1:]).all(axis=-1)
     heavier = (pick(ds, neighbour="mass_high").line_time - optimum.line_time).values
@@ -208,16 +225,13 @@ def ga_law_rows(ds: xr.Dataset, *, flat: float = 0.0, resamples: int = 200,
     to_bound = (ds.mass / (ds.M * ds.eps_bar / 2)).values   # 1 on the existence bound (34)
     problems = least.size
     return [Reproduced.claim(
-        "B", "law_explains_ga_optimum",
-        Margin(float(np.median(share)) - 0.5, 2 * float(spread), "share of the change",
-               f"bootstrap over {share.size} neighbours"),
+        "B", "law_explains_ga_optimum", holds,
         f"around each of the GA's {problems} optima (beta and m moved by {float(ds.step):.0%}; "
-        f"{int(flat_change.sum())} neighbours whose change is flat, within {flat:g} s, left "
-        "out: no term carries it) "
+        f"{left_out}) "
         f"the whirl after the run-up decays on a line of the log scale (largest residual "
         f"{np.nanmax(ds.fit_residual.values):.2f} in ln r; its balance time within "
         f"{np.nanmax(line_err):.2f} s of the integration's). The amplitude the passage leaves "
-        f"carries {np.median(share):.0%} of the change to a neighbour at the median, the decay "
+        f"carries {share:.0%} of the change to a neighbour at the median, the decay "
         f"rate the rest: the optimum leaves the least whirl of its neighbours in "
         f"{int(least.sum())} of {problems} problems, while the fitted rate varies little (it "
         f"equals the slowest eigenvalue's within {np.nanmedian(fit_vs_eigen):.1%} at the "

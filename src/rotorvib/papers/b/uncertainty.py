@@ -35,7 +35,7 @@ import xarray as xr
 
 from rotorvib.comparison import MATCH_TOL, Margin, Reproduced, within_band
 from rotorvib.io.coords import pick
-from rotorvib.methods.bands import band_statement
+from rotorvib.methods.bands import band_margin, band_statement
 from rotorvib.methods.sensitivity import problem, sample, study_dataset
 from rotorvib.models.balancer import certificates
 from rotorvib.models.balancer.layout import metric
@@ -165,16 +165,55 @@ def run_case(setup: Setup, x, case: dict, *, kinematics: str,
             "balanced": (metric(metrics, "balanced") == 1).mean(axis=1)}
 
 
+def prior_name(name: str, low: float, high: float) -> str:
+    """A prior of one input as the rows name it: ``zeta = 0.01`` (fixed), ``zeta in [0.008,
+    0.012]`` (uniform)."""
+    return f"{name} = {low:g}" if low == high else f"{name} in [{low:g}, {high:g}]"
+
+
+def fixed_priors(alternatives: dict) -> list[tuple[str, float]]:
+    """The alternative priors that fix an input, ``(input, value)``, in the configuration's
+    order; the narrower ranges need no run of their own (:func:`prior_samples`)."""
+    return [(name, float(low)) for name, ranges in alternatives.items()
+            for low, high in ranges if low == high]
+
+
+def fixed_prior_runs(run, x, n_inputs: int, fixed: list[tuple[str, float]]) -> dict:
+    """``run`` at Saltelli's first base points (rows ``0, D + 2, ...`` of ``x``: independent
+    and uniform over the ranges) with one input fixed, for each ``(input, value)`` of
+    ``fixed``, in one batch: quantity -> array (fixed prior, point)."""
+    base = np.asarray(x, float)[::n_inputs + 2]
+    points = np.concatenate([np.where(np.arange(n_inputs) == INPUTS.index(name), value, base)
+                             for name, value in fixed])
+    return {q: v.reshape(len(fixed), len(base)) for q, v in run(points).items()}
+
+
+def with_fixed_priors(ds: xr.Dataset, fixed: list[tuple[str, float]], y: dict) -> xr.Dataset:
+    """The study ``ds`` with the outputs ``y`` of :func:`fixed_prior_runs` for the priors
+    ``fixed`` (``fixed_y``, by ``fixed_prior``: its name, :func:`prior_name`)."""
+    ds = ds.assign(fixed_y=(("fixed_prior", "quantity", "base_point"),
+                            np.stack([np.asarray(y[str(q)], float)
+                                      for q in ds.quantity_name.values], axis=1),
+                            {"long_name": "model output at Saltelli's base points with one input "
+                                          "fixed (units by quantity)", "units": "1"}))
+    return ds.assign_coords(fixed_prior=("fixed_prior", np.array(
+        [prior_name(n, v, v) for n, v in fixed], dtype=object),
+        {"long_name": "the input fixed and its value"}))
+
+
 def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinematics: str,
                         n_base: int, convergence, resamples: int, seed: int,
-                        runs=None) -> xr.Dataset:
+                        alternatives: dict, runs=None) -> xr.Dataset:
     """Sobol indices and bands of the quantities of ``case`` (``name``, ``title``, ``beta``,
     ``mass``, ``eps_bar``, ``speed`` or None, ``phi0_deg`` or ``ics``, and ``printed``: the
     paper's values to set against the bands, quantity -> key in the paper values) over
     ``ranges`` (input -> ``[low, high]`` for every input but R) and ``R_band``
     (:func:`calibrated_band`: low, high and how they were found); the nominal run is the case
     as the paper runs it: R and r(0) of ``setup``, no tolerances.  ``runs`` as
-    :func:`run_case`'s."""
+    :func:`run_case`'s.  ``alternatives`` (input -> list of ``[low, high]`` within its range)
+    are the other priors the rows are evaluated under: a narrower range is the sample's points
+    inside it, uniform there too; a fixed value (``low == high``) is a run of each of Saltelli's
+    base points with the input at that value (``fixed_y``)."""
     R_low, R_high, R_how = R_band
     spec = problem({"R": (R_low, R_high), **{name: tuple(ranges[name])
                                               for name in INPUTS[1:]}})
@@ -184,6 +223,8 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinem
     nominal = {q: v[0] for q, v in run([[at.get(n, 0.0) for n in INPUTS]]).items()}
     ds = study_dataset(spec, x, run(x), nominal, QUANTITIES, n_bases=convergence,
                        resamples=resamples, seed=seed)
+    if fixed := fixed_priors(alternatives):
+        ds = with_fixed_priors(ds, fixed, fixed_prior_runs(run, x, len(INPUTS), fixed))
     speed = "the run-up" if case["speed"] is None else f"{case['speed']:g} rad/s"
     over = (f" (each a mean over {len(case['ics'])} initial conditions)" if case.get("ics")
             else "")
@@ -202,29 +243,76 @@ def uncertainty_dataset(setup: Setup, *, case: dict, ranges: dict, R_band, kinem
                            r_threshold=setup.criterion.r_threshold,
                            printed=json.dumps(case["printed"]),
                            mass_tolerance=json.dumps(list(ranges["mass_tolerance"])),
-                           overload=float(ranges["overload"]), R_range=R_how, **attrs)
+                           overload=float(ranges["overload"]), R_range=R_how,
+                           prior_alternatives=json.dumps(alternatives), **attrs)
 
 
 #: What the rows of the uncertainty study rest on.
 _CHOICES = ("paper_b.uncertainty.ranges (the inputs' ranges, chosen, zeta's a stated prior; "
             "R's range from the calibration of rule b_forces)",
+            "paper_b.uncertainty.prior_alternatives (the other priors the rows are evaluated "
+            "under, chosen)",
             "paper_b.uncertainty.n_base (the sample, chosen from its convergence)")
+
+
+def prior_samples(ds: xr.Dataset, quantity: str) -> dict[str, np.ndarray]:
+    """The values of ``quantity`` under each prior of the study ``ds``: its own ranges (the
+    whole sample) first, then each alternative of ``prior_alternatives``: a narrower range the
+    sample's points inside it (uniform there, the other inputs as before), a fixed value its
+    runs (``fixed_y``). Keyed by the priors' names; one entry ``""`` where there are no
+    alternatives."""
+    q = list(ds.quantity_name.values).index(quantity)
+    y = ds.y.values[q]
+    alternatives = json.loads(ds.attrs["prior_alternatives"])
+    if not alternatives:
+        return {"": y}
+    names = [str(n) for n in ds.input_name.values]
+    own = ", ".join(prior_name(n, float(ds.input_low[names.index(n)]),
+                               float(ds.input_high[names.index(n)])) for n in alternatives)
+    samples = {own: y}
+    for name, ranges in alternatives.items():
+        column = ds.x.values[:, names.index(name)]
+        for low, high in ranges:
+            key = prior_name(name, low, high)
+            samples[key] = (ds.fixed_y.sel(fixed_prior=key).values[q] if low == high
+                            else y[(column >= low) & (column <= high)])
+    return samples
+
+
+def _bands_text(ds: xr.Dataset, quantity: str, samples: dict) -> str:
+    """The 5-95 % band of ``quantity`` under each alternative prior of ``samples``."""
+    p = ds.percentile.values
+    unit = str(ds.quantity_units.values[list(ds.quantity_name.values).index(quantity)])
+
+    def band(y):
+        y = y[np.isfinite(y)]
+        return (f"{np.percentile(y, p[0]):.4g}-{np.percentile(y, p[-1]):.4g} {unit} over "
+                f"{y.size} points" if y.size else "no point with a value")
+
+    return "; ".join(f"with {name}: {band(y)}" for name, y in list(samples.items())[1:])
 
 
 def within_band_rows(ds: xr.Dataset, paper: dict, printed: dict) -> list[Reproduced]:
     """One row per ``quantity -> paper key`` of ``printed``: is the paper's value within the
-    band of its reproduction?  Where R's range is not the calibrated band, the row says so;
-    where it is, a value the calibration was fitted to (:data:`CALIBRATION_KEY`) is labelled
-    so: its band holds it by construction."""
+    band of its reproduction, under the study's priors and each alternative
+    (:func:`prior_samples`; DEPENDS, naming the prior, where they disagree)?  Where R's range
+    is not the calibrated band, the row says so; where it is, a value the calibration was
+    fitted to (:data:`CALIBRATION_KEY`) is labelled so: its band holds it by construction."""
     calibrated = ds.attrs["R_range"] == CALIBRATED
     caveat = "" if calibrated else f" ({ds.attrs['R_range']})"
     fitted = re.compile(CALIBRATION_KEY.format(row=r"\d+"))
     rows = []
     for quantity, key in printed.items():
-        margin, text = band_statement(ds, quantity, paper[key])
+        _, text = band_statement(ds, quantity, paper[key])
+        samples = prior_samples(ds, quantity)
+        holds = {name: within_band(ds, quantity, band_margin(ds, quantity, paper[key], y),
+                                   int(np.size(y)))
+                 for name, y in samples.items()}
+        others = _bands_text(ds, quantity, samples)
         used = calibrated and fitted.fullmatch(key)
-        rows.append(_claim(f"{key}_within_uncertainty", within_band(ds, quantity, margin),
-                           f"printed {text}{caveat}", choices=_CHOICES,
+        rows.append(_claim(f"{key}_within_uncertainty", holds if len(holds) > 1 else holds[""],
+                           f"printed {text}{caveat}" + (f"; {others}" if others else ""),
+                           choices=_CHOICES,
                            calibrated=(f"R's range is {CALIBRATED}, {key} among them"
                                        if used else "")))
     return rows

@@ -156,13 +156,6 @@ def free_spring_dual(rotor: Rotor, mass: float, d: float, band_w) -> tuple[Absor
     return sets(best.x)
 
 
-def tuned_mass_floor(rotor: Rotor, k_min: float) -> float:
-    """Least added mass (kg) of two sets both tuned to ``omega_n`` (``2 k / m = omega_n^2``)
-    when every spring is at least ``k_min``: two sets of two bodies of ``2 k_min / omega_n^2``."""
-    return 4 * 2 * k_min / rotor.omega_n**2
-
-
-
 #: The variables of :func:`broadband_dataset`: (long name, units).
 BROADBAND_VARIABLES = {
     "front_band_peak": ("largest D over the band, Pareto front", "1"),
@@ -184,7 +177,6 @@ BROADBAND_VARIABLES = {
                          "and radius with springs and dampers free of the bounds", "1"),
     "free_spring_parameters": ("that design (m, k, c, d of set 1 and set 2; units: kg, N m-1, "
                                "N s m-1, m by kind)", "1"),
-    "tuned_mass_floor": ("least added mass of two sets tuned to omega_n within the bounds", "kg"),
     "lower_bound_k": ("least spring stiffness the bounds allow", "N m-1"),
     "omega_n": ("natural frequency of the rotor without absorber", "rad s-1"),
     "theta": ("disk twist angle from rest under Gamma0 cos(omega_n t), exact linear response of "
@@ -197,7 +189,7 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
     """The front, and each design of :data:`DESIGNS`: D over ``w``, the band peak over
     ``band_w``, the peak over all frequencies (refined), the added mass and theta(t) from rest
     under ``Gamma0 cos(omega_n t)`` at times ``t`` (exact linear response); ``k_min`` is the
-    bounds' least spring stiffness (for :func:`tuned_mass_floor`).  ``spread_fronts``, the
+    bounds' least spring stiffness.  ``spread_fronts``, the
     fronts of the same NSGA-II from other seeds, give ``broadband_peak_by_seed``: the
     broadband design's peak from every seed, the first ``front``'s."""
     mass_t2 = float(added_mass(dual_to_vector(table2)))
@@ -234,7 +226,6 @@ def broadband_dataset(rotor: Rotor, table2, x_single, d_single: float, front: Pa
             "free_spring_peak": ((), rotor_peak(rotor, free)[1]),
             "free_spring_parameters": ("parameter", [getattr(s, kind) for kind in "mkcd"
                                                      for s in free]),
-            "tuned_mass_floor": ((), tuned_mass_floor(rotor, k_min)),
             "lower_bound_k": ((), float(k_min)),
             "omega_n": ((), rotor.omega_n),
             "theta": (("design", "t"), theta),
@@ -287,6 +278,21 @@ CHOICES = ("paper_c.broadband.band (the frequency range the peak is taken over, 
            "paper_c.broadband.nsga.seed, spread_seeds (chosen)")
 
 
+def front_below_text(added_mass, below) -> str:
+    """Which designs of the front lie below Den Hartog's curve, by added mass: "from m kg" only
+    where every design at least that heavy does, else how many and their range."""
+    added_mass, below = np.asarray(added_mass, float), np.asarray(below, bool)
+    if not below.any():
+        return "no design of the front is below Den Hartog's curve"
+    lightest = added_mass[below].min()
+    if below[added_mass >= lightest].all():
+        return (f"every design of the front from {lightest:.3g} kg up is below Den Hartog's "
+                f"curve ({int(below.sum())} of {below.size})")
+    return (f"{int(below.sum())} of the front's {below.size} designs are below Den Hartog's "
+            f"curve, between {lightest:.3g} and {added_mass[below].max():.3g} kg, not all "
+            "the designs between")
+
+
 def broadband_rows(ds: xr.Dataset) -> list[Reproduced]:
     """Is the broadband optimum's peak below Table 2's, the single-frequency optimum's and Den
     Hartog's absorber of the same mass?"""
@@ -303,10 +309,7 @@ def broadband_rows(ds: xr.Dataset) -> list[Reproduced]:
     k_free = ds.free_spring_parameters.values[2:4]
     k_min = float(ds.lower_bound_k)
     front, dh = ds.front_band_peak.values, ds.front_den_hartog_peak.values
-    below = front < dh
-    where = (f"the front is below Den Hartog's curve from "
-             f"{ds.front_added_mass.values[below].min():.3g} kg" if below.any()
-             else "no design of the front is below Den Hartog's curve")
+    where = front_below_text(ds.front_added_mass.values, front < dh)
     return [
         _claim("broadband_below_table2",
                margin((min(peak["table2"], peak["single_frequency"]) - bb) / bb),
@@ -321,9 +324,8 @@ def broadband_rows(ds: xr.Dataset) -> list[Reproduced]:
                     Margin((peak["den_hartog"] - free) / free, FREE_SPRING_TOL, "relative",
                            "Nelder-Mead's tolerance on the peak")},
                f"largest D {bb:.4g} (broadband dual) against {peak['den_hartog']:.4g} (Den "
-               f"Hartog single absorber of {mass['den_hartog']:.3g} kg); {where}, and two sets "
-               f"tuned to omega_n need at least {float(ds.tuned_mass_floor):.3g} kg within the "
-               f"bounds (every spring >= {k_min:g} N/m). The verdict rests on that bound: with "
+               f"Hartog single absorber of {mass['den_hartog']:.3g} kg); {where}. The verdict "
+               f"rests on the bound every spring >= {k_min:g} N/m: with "
                f"springs and dampers free, a dual absorber of Den Hartog's mass and radius "
                f"reaches {free:.4g} (k = {k_free[0]:.4g}, {k_free[1]:.4g} N/m)",
                choices=CHOICES),
