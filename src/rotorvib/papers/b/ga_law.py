@@ -176,16 +176,18 @@ def amplitude_share(ds: xr.Dataset, flat: float, *, resamples: int = 200,
                     seed: int = 0) -> tuple[Margin | None, int]:
     """Over every neighbour of a GA optimum in its box that balances: the share of the change
     of the line's time carried by the amplitude term, ``|amp| / (|amp| + |rate|)``, left out
-    where the change is flat (the net change ``|amp + rate|`` within ``flat`` seconds: two
-    terms that cancel to nothing carry no share); the :class:`Margin` of its median against
-    1/2 (uncertainty twice its bootstrap standard deviation; None where no neighbour is left)
-    and the number of flat neighbours left out."""
+    where the change is flat (the integrated balance time moves by no more than ``flat``
+    seconds: a change the run does not resolve, which two terms cancelling to it share out
+    arbitrarily); the :class:`Margin` of its median against 1/2 (uncertainty twice its
+    bootstrap standard deviation; None where no neighbour is left) and the number of flat
+    neighbours left out."""
     amp, rate = ds.amplitude_term.values[..., 1:], ds.rate_term.values[..., 1:]
     balanced = np.isfinite(ds.balance_time.values)
     candidates = ((ds.in_box.values[..., 1:] == 1) & balanced[..., 1:] & balanced[..., :1]
                   & np.isfinite(amp) & np.isfinite(rate))
     with np.errstate(invalid="ignore"):
-        flat_change = candidates & (np.abs(amp + rate) <= flat)
+        change = ds.balance_time.values[..., 1:] - ds.balance_time.values[..., :1]
+        flat_change = candidates & (np.abs(change) <= flat)
     use = candidates & ~flat_change
     if not use.any():
         return None, int(flat_change.sum())
