@@ -14,7 +14,7 @@ author = "rotorvib reproduction project"
 copyright = "the rotorvib authors (code MIT, data CC-BY-4.0)"
 extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.mathjax"]
 source_suffix = {".md": "markdown"}
-exclude_patterns = ["_build", "_generated"]
+exclude_patterns = ["_build", "_generated", "findings"]
 myst_heading_anchors = 3
 myst_enable_extensions = ["dollarmath"]
 html_theme = "alabaster"
@@ -93,7 +93,20 @@ def _write(path: Path, text: str) -> None:
         path.write_text(text)
 
 
+def check_findings(app):
+    """docs/papers.md must be its template filled from the recorded paper run: a page edited
+    by hand, or a record changed without regenerating it, fails the build."""
+    from rotorvib.pipeline import findings
+
+    expected = findings.render(findings.TEMPLATE.read_text(encoding="utf-8"),
+                               findings.read_record(findings.RECORD))
+    if findings.PAGE.read_text(encoding="utf-8") != expected:
+        raise RuntimeError("docs/papers.md is not its template filled from the recorded run: "
+                           "python -m rotorvib.pipeline.findings")
+
+
 def setup(app):
+    app.connect("builder-inited", check_findings)
     app.connect("builder-inited", write_configuration_reference)
     app.connect("builder-inited", write_papers)
     app.connect("builder-inited", write_api)
