@@ -2,10 +2,10 @@
 wrote for this user is detected by its keyed checksum, ignored with a one-line warning and rebuilt, never a crash
 or a changed result; a held compile lock is said, then refused, naming its file."""
 
+import errno
 import fcntl
 import hashlib
 import json
-import errno
 import os
 import shutil
 import stat
