@@ -201,7 +201,8 @@ def test_a_symbolic_link_of_another_user_on_the_way_is_refused(shared, tmp_path,
 # the victim at PLANT inside the cluster's folder as soon as PLANT's folder exists.
 PLANTING_MKDIR = """#!/bin/bash
 {mkdir} "$@" || exit
-[[ -d $(dirname -- "$CLUSTER/$PLANT") && ! -L $CLUSTER/$PLANT ]] && ln -s "$VICTIM" "$CLUSTER/$PLANT"
+plant=$CLUSTER/$PLANT
+[[ -d $(dirname -- "$plant") && ! -L $plant ]] && ln -s "$VICTIM" "$plant"
 exit 0
 """
 

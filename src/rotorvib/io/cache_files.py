@@ -162,8 +162,8 @@ def read_checked(path: str | Path, *, unkeyed: bool = False) -> str | None:
     """The text :func:`write_checked` wrote to ``path`` (under this name) for this user; None
     where there is no such file or no seal to check it with, None with the file deleted where
     ``unkeyed`` and it was sealed the other way (with a key while there is none, or without
-    one while there is: it is rebuilt, not damaged), and None with a warning (the file deleted) where it
-    cannot be read as UTF-8 or its seal does not match."""
+    one while there is: it is rebuilt, not damaged), and None with a warning (the file
+    deleted) where it cannot be read as UTF-8 or its seal does not match."""
     try:
         raw = Path(path).read_bytes()
     except OSError:

@@ -7,9 +7,10 @@ And it trusts its files: a damaged index or code file (``*.nbi``, ``*.nbc``) fai
 process that loads it.  :func:`drop_if_stale`, which the package calls before it compiles or
 loads anything, keeps a manifest in the package's cache folder (a checked file,
 :mod:`rotorvib.io.cache_files`, sealed without the user's key where that key is unusable, so
-that numba's cache is still checked and used then, not dropped by every job): the hash of all the package's modules and the SHA-256 of every
-numba file it has seen.  It empties the folder's numba files when the sources changed or,
-with a one-line warning, when the manifest itself is damaged; when a file it recorded no
+that numba's cache is still checked and used then, not dropped by every job): the hash of all
+the package's modules and the SHA-256 of every numba file it has seen.  It empties the
+folder's numba files when the sources changed or, with a one-line warning, when the manifest
+itself is damaged; when a file it recorded no
 longer matches, it deletes, with a warning, the files of that function only, which numba then
 compiles again.  :func:`record` adds the files a process wrote (the package calls it once a compiled
 function has been compiled or loaded).  :func:`compile_lock` lets processes that start at once
