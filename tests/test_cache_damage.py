@@ -2,6 +2,7 @@
 wrote for this user is detected by its keyed checksum, ignored with a one-line warning and rebuilt, never a crash
 or a changed result; a held compile lock is said, then refused, naming its file."""
 
+import errno
 import fcntl
 import hashlib
 import json
@@ -10,6 +11,7 @@ import shutil
 import stat
 import subprocess
 import sys
+import threading
 import time
 
 import pytest
@@ -200,3 +202,144 @@ def test_a_held_compile_lock_is_said_then_refused_naming_its_file(tmp_path, monk
     assert "waiting for the compile lock" in capsys.readouterr().err
     with compile_lock(tmp_path, timeout=1.0):      # released: taken at once
         pass
+
+
+# --- an unusable key -------------------------------------------------------------------------
+
+@pytest.fixture
+def cache_home(tmp_path, monkeypatch):
+    """A cache home of the test's own, the key made afresh in it (the process's is forgotten
+    before and after)."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "home"))
+    cache_files.user_key.cache_clear()
+    yield tmp_path / "home"
+    cache_files.user_key.cache_clear()
+
+
+def _unusable(kind: str, home, monkeypatch):
+    """Make the key file at its place unusable, as ``kind`` says; the reason expected."""
+    path = home / "rotorvib/cache.key"
+    if kind == "not a folder":
+        home.parent.mkdir(exist_ok=True)
+        home.write_text("a file where the cache home should be\n")
+        return "it cannot be opened (Not a directory)"
+    if kind == "read-only home":         # root writes through modes: the file system says no
+        def read_only(*args, **kwargs):
+            raise OSError(errno.EROFS, os.strerror(errno.EROFS))
+        monkeypatch.setattr(cache_files.tempfile, "mkstemp", read_only)
+        return "it cannot be made (Read-only file system)"
+    path.parent.mkdir(parents=True, mode=0o700)
+    key = os.urandom(32).hex() + "\n"
+    if kind == "mode 644":
+        path.write_text(key)
+        path.chmod(0o644)
+        return "others can read or write it (mode 644)"
+    if kind == "symlink":
+        (home / "elsewhere").write_text(key)
+        (home / "elsewhere").chmod(0o600)
+        path.symlink_to(home / "elsewhere")
+        return "it is a symbolic link"
+    if kind == "fifo":
+        os.mkfifo(path, 0o600)
+        return "it is not a regular file"
+    if kind == "not a key":
+        path.write_text("short\n")
+        path.chmod(0o600)
+        return "it does not hold a key"
+    if os.geteuid() != 0:
+        pytest.skip("a key file of another user needs root to make")
+    path.write_text(key)
+    path.chmod(0o600)
+    os.chown(path, 65534, 65534)
+    return "it belongs to uid 65534, not to this user"
+
+
+KINDS = ["mode 644", "symlink", "fifo", "not a key", "not a folder", "read-only home",
+         "another user's"]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_an_unusable_key_is_refused_once_naming_the_file_and_why(cache_home, kind, capsys,
+                                                                   monkeypatch):
+    """Refused, never replaced (others may have read it) and never blocking: a FIFO is opened
+    without waiting for a writer (before, the job blocked for ever), in a thread here so that
+    a regression fails instead of hanging the tests."""
+    why = _unusable(kind, cache_home, monkeypatch)
+    got = []
+    reader = threading.Thread(target=lambda: got.append(cache_files.user_key()), daemon=True)
+    reader.start()
+    reader.join(timeout=10)
+    assert not reader.is_alive(), "reading the key blocked"
+    assert got == [None] and cache_files.user_key() is None
+    err = capsys.readouterr().err.splitlines()
+    assert err == [f"rotorvib: cache key {cache_files.key_file()} refused: {why}"
+                   + err[0].partition(why)[2]]                  # one line, once
+    assert "not cached" in err[0]
+
+
+@pytest.mark.parametrize("kind", ["mode 644", "symlink"])
+def test_without_a_usable_key_numbas_cache_is_still_checked_and_kept(tmp_path, cache_home,
+                                                                     kind, capsys,
+                                                                     monkeypatch):
+    """With the key unusable, every engine job dropped numba's files (the manifest could not be
+    checked, so each read as damaged) and compiled again, 4 s of CPU becoming 19. Now the
+    manifest is sealed without the key: the files a job recorded are kept for the next, and a
+    damaged file or an edited source is still found."""
+    _unusable(kind, cache_home, monkeypatch)
+    (tmp_path / "pkg").mkdir()
+    cache, files = _package(tmp_path / "pkg")               # the manifest sealed unkeyed
+    assert cache_files.user_key() is None
+    assert (cache / MANIFEST).read_text().startswith("sha256:")
+    for _ in range(3):                                      # three jobs: nothing dropped
+        assert not drop_if_stale(tmp_path / "pkg")
+        assert all(p.exists() for p in files.values())
+    assert "damaged" not in capsys.readouterr().err
+    damaged = files["a.f-1.py311.1.nbc"]
+    damaged.write_bytes(DAMAGE["one byte edited"](damaged.read_bytes()))
+    assert drop_if_stale(tmp_path / "pkg") and not damaged.exists()
+    assert files["a.g-9.py311.1.nbc"].exists()
+    assert capsys.readouterr().err.count("damaged cache file") == 1
+    (tmp_path / "pkg/a.py").write_text("x = 2\n")           # an edited source: all dropped
+    assert drop_if_stale(tmp_path / "pkg") and not any(p.exists() for p in files.values())
+
+
+def test_a_manifest_sealed_the_other_way_is_rebuilt_without_a_warning(tmp_path, cache_home,
+                                                                      capsys):
+    """A manifest sealed with the key, read once the key is unusable (or the other way round),
+    is not damaged: numba's files are dropped once, silently, and recorded afresh."""
+    (tmp_path / "pkg").mkdir()
+    cache, files = _package(tmp_path / "pkg")
+    assert cache_files.user_key() is not None
+    os.chmod(cache_files.key_file(), 0o644)
+    cache_files.user_key.cache_clear()
+    assert drop_if_stale(tmp_path / "pkg") and not any(p.exists() for p in files.values())
+    assert "damaged" not in capsys.readouterr().err
+    assert (cache / MANIFEST).read_text().startswith("sha256:")
+    os.chmod(cache_files.key_file(), 0o600)                 # the key usable again
+    cache_files.user_key.cache_clear()
+    for path in files.values():
+        path.write_bytes(os.urandom(200))
+    assert drop_if_stale(tmp_path / "pkg") and not any(p.exists() for p in files.values())
+    assert "damaged" not in capsys.readouterr().err
+    assert not (cache / MANIFEST).read_text().startswith("sha256:")
+
+
+def test_a_valid_file_copied_over_another_is_refused(tmp_path, cache_home, capsys):
+    """The seal binds a file's name (a generated function's name and sources' hash): another
+    function's valid file copied over it is not run (before, square(3) gave cube's 27)."""
+    module = tmp_path / "expressions.py"
+    module.write_text("# the expressions' module\n")
+    x = sp.Symbol("x")
+
+    def cached(name, power):
+        return codegen.cached_lambdify(name, lambda: ((x,), x**power), sources=(module,))
+
+    assert cached("square", 2)(3.0) == 9.0 and cached("cube", 3)(3.0) == 27.0
+    (square,) = (tmp_path / "__pycache__").glob("square.*")
+    (cube,) = (tmp_path / "__pycache__").glob("cube.*")
+    shutil.copyfile(cube, square)
+    assert cached("square", 2)(3.0) == 9.0
+    assert capsys.readouterr().err.count(f"damaged cache file {square}") == 1
+    write_checked(tmp_path / "a", "text")
+    shutil.copyfile(tmp_path / "a", tmp_path / "b")
+    assert read_checked(tmp_path / "a") == "text" and read_checked(tmp_path / "b") is None

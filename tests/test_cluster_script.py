@@ -3,6 +3,7 @@ or starts anything (no SLURM needed for these tests)."""
 
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -146,7 +147,7 @@ def test_in_a_sticky_parent_the_racer_cannot_move_the_folder(shared, attempt, tm
     os.chmod(parent, 0o1777)
     tools = tmp_path / "bin"             # what the folder checks need, and no SLURM or apt-get
     tools.mkdir()
-    for tool in ("bash", "stat", "mkdir", "dirname", "id"):
+    for tool in ("bash", "stat", "mkdir", "dirname", "id", "readlink"):
         (tools / tool).symlink_to(shutil.which(tool))
     stderr, code = _start_against_a_racer(parent, shared / "roots", str(tools))
     assert code == 77 and "SLURM is not installed" in stderr and "there is no apt-get" in stderr
@@ -154,3 +155,83 @@ def test_in_a_sticky_parent_the_racer_cannot_move_the_folder(shared, attempt, tm
     made = parent / "cluster"
     assert not made.is_symlink() and (made / ".made-by-one-node-slurm").read_text() == "0\n"
     assert [p.name for p in parent.iterdir()] == ["cluster"]
+
+
+def _start_through(parent: Path, tools: Path) -> subprocess.CompletedProcess:
+    return subprocess.run([str(SCRIPT), "start", str(parent / "cluster")], check=False,
+                          capture_output=True, text=True, timeout=60,
+                          env={**os.environ, "PATH": str(tools)})
+
+
+def _tools(where: Path, names=("bash", "stat", "mkdir", "dirname", "id", "readlink")) -> Path:
+    """A PATH of the tools the folder checks need, and no SLURM or apt-get (start then stops,
+    77, once its folder is made)."""
+    where.mkdir()
+    for tool in names:
+        (where / tool).symlink_to(shutil.which(tool))
+    return where
+
+
+@pytest.mark.parametrize("nested", [False, True], ids=["theirs", "mine-through-theirs"])
+def test_a_symbolic_link_of_another_user_on_the_way_is_refused(shared, tmp_path, nested):
+    """A link of nobody's on the way to DIR, or in the target of root's own link, is refused
+    before anything is made: its owner could point it at a folder of theirs between the checks
+    and the writes. A link of root's own is followed (the folder is made in its target)."""
+    (shared / "sticky").mkdir()
+    os.chmod(shared / "sticky", 0o1777)
+    theirs = shared / "sticky/theirs"
+    subprocess.run(["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", "ln", "-s",
+                    str(shared / "roots"), str(theirs)], check=True)
+    assert theirs.lstat().st_uid == 65534
+    tools = _tools(tmp_path / "bin")
+    via = theirs
+    if nested:
+        via = shared / "mine"
+        via.symlink_to(theirs)
+    run = _start_through(via, tools)
+    assert run.returncode == 2, run.stderr
+    assert f"{theirs} is a symbolic link of another user (uid 65534)" in run.stderr
+    assert list((shared / "roots").iterdir()) == []
+    (shared / "own").symlink_to(shared / "roots")
+    run = _start_through(shared / "own", tools)
+    assert run.returncode == 77 and (shared / "roots/cluster/.made-by-one-node-slurm").is_file()
+
+
+# `mkdir` as a racer that wins at once: it makes the folders asked for, then plants a link to
+# the victim at PLANT inside the cluster's folder as soon as PLANT's folder exists.
+PLANTING_MKDIR = """#!/bin/bash
+{mkdir} "$@" || exit
+plant=$CLUSTER/$PLANT
+[[ -d $(dirname -- "$plant") && ! -L $plant ]] && ln -s "$VICTIM" "$plant"
+exit 0
+"""
+
+
+@pytest.mark.parametrize("plant", [".made-by-one-node-slurm", "slurm.conf", "run/munge.key"])
+def test_a_file_of_the_cluster_is_created_never_written_through_a_link(tmp_path, plant):
+    """The mark, the configuration and the munge key are created (noclobber), so that a link
+    planted in their place is refused, not followed: the victim keeps its bytes and its mode
+    (before, the key's `dd` overwrote it and `chmod 400` made it root's key). Past the mark,
+    start needs root (it writes the configuration only as root)."""
+    if plant != ".made-by-one-node-slurm" and os.geteuid() != 0:
+        pytest.skip("start writes its configuration and key only as root")
+    victim = tmp_path / "victim"
+    victim.write_text("precious\n")
+    os.chmod(victim, 0o644)
+    tools = _tools(tmp_path / "bin", ("bash", "stat", "dirname", "id", "readlink", "ln",
+                                      "hostname", "nproc", "awk", "python3", "cat", "head",
+                                      "chmod", "seq", "sleep"))
+    (tools / "mkdir").write_text(PLANTING_MKDIR.format(mkdir=shutil.which("mkdir")))
+    (tools / "mkdir").chmod(0o755)
+    for fake in ("slurmctld", "slurmd", "sbatch", "munged"):     # "installed", never reached
+        (tools / fake).write_text("#!/bin/sh\nexit 1\n")
+        (tools / fake).chmod(0o755)
+    (tmp_path / "top").mkdir(mode=0o755)
+    cluster_dir = tmp_path / "top/cluster"
+    run = subprocess.run([str(SCRIPT), "start", str(cluster_dir)], check=False,
+                         capture_output=True, text=True, timeout=60,
+                         env={**os.environ, "PATH": str(tools), "CLUSTER": str(cluster_dir),
+                              "PLANT": plant, "VICTIM": str(victim)})
+    assert (cluster_dir / plant).is_symlink(), run.stderr          # the racer did plant it
+    assert run.returncode == 1 and "cannot overwrite existing file" in run.stderr
+    assert victim.read_text() == "precious\n" and stat.S_IMODE(victim.stat().st_mode) == 0o644

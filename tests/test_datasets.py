@@ -1,5 +1,8 @@
+import errno
 import hashlib
 import json
+import os
+import re
 
 import netCDF4
 import numpy as np
@@ -7,6 +10,7 @@ import pytest
 import xarray as xr
 
 from conftest import cf_check
+from rotorvib.io import datasets
 from rotorvib.io.datasets import DatasetError, Provenance, read_dataset, write_dataset
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
@@ -194,3 +198,44 @@ def test_variables_take_their_long_name_and_units_from_one_table():
         described({"t": ("run", [1.0]), "name": ("run", ["a"]), "x": ((), 0.0)}, table)
     with pytest.raises(KeyError, match=r"descriptions of no variable: \['name'\]"):
         described({"t": ("run", [1.0])}, table)
+
+
+def _failing_write(error, partial=b""):
+    """``to_netcdf`` as the netCDF library fails: ``partial`` bytes written, then ``error``."""
+    def write(self, path, **kwargs):
+        with open(path, "wb") as fh:
+            fh.write(partial)
+        raise error
+    return write
+
+
+def _free(n):
+    return lambda folder: os.statvfs_result((4096, 1, 0, 0, n, 0, 0, 0, 0, 255))
+
+
+@pytest.mark.parametrize("error, free", [
+    (OSError(errno.ENOSPC, "No space left on device"), 10 << 30),    # said plainly
+    (PermissionError(errno.EACCES, "Permission denied"), 0),           # a full disk, netCDF's
+    (RuntimeError("NetCDF: HDF error"), 100),                          # words for it
+], ids=["ENOSPC", "permission denied", "HDF error"])
+def test_a_full_disk_is_said_naming_the_file(tmp_path, monkeypatch, error, free):
+    """Before, a dataset written on a full disk failed with "Permission denied" (or "NetCDF:
+    HDF error" when it ran out midway, leaving the partial file); now the error says that no
+    space is left, names the file and removes the partial one."""
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", _failing_write(error, b"\x89HDF" * 100))
+    monkeypatch.setattr(datasets.os, "statvfs", _free(free))
+    path = tmp_path / "a.nc"
+    with pytest.raises(OSError, match=r"^\[Errno 28\] no space left on device to write the "
+                                      r"dataset .*: '" + re.escape(str(path)) + "'$") as raised:
+        write_dataset(_dataset(), path, Provenance(rule="r", config={}))
+    assert raised.value.errno == errno.ENOSPC and str(error) in str(raised.value)
+    assert not path.exists()
+
+
+def test_another_write_error_is_left_as_it_is(tmp_path, monkeypatch):
+    """Where space is left, a refused write is what the library said (a read-only folder)."""
+    monkeypatch.setattr(xr.Dataset, "to_netcdf",
+                        _failing_write(PermissionError(errno.EACCES, "Permission denied")))
+    monkeypatch.setattr(datasets.os, "statvfs", _free(10 << 30))
+    with pytest.raises(PermissionError, match="Permission denied"):
+        write_dataset(_dataset(), tmp_path / "a.nc", Provenance(rule="r", config={}))

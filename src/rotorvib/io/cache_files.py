@@ -5,15 +5,26 @@ The package keeps derived data in its ``__pycache__`` folders (generated numeric
 numba's manifest, code-fingerprint memos); parallel workflow jobs may write the same file at
 once, and a file may be damaged (a full disk, an interrupted copy, an edit) or planted (a
 cache copied in from elsewhere, a folder others can write).  A checked file begins with an
-HMAC-SHA-256 of the rest under this user's key (:func:`user_key`, kept private outside the
-package): :func:`read_checked` gives back what :func:`write_checked` wrote for this user, or
-nothing, with a one-line warning, for a file that does not match (the caller then rebuilds it).
-So generated code runs only if this user's own process wrote it; a checksum computed by anyone
-without the key does not match. Where no private key can be kept, nothing is cached.
+HMAC-SHA-256 under this user's key (:func:`user_key`, kept private outside the package) of its
+name and the rest: :func:`read_checked` gives back what :func:`write_checked` wrote for this
+user under that name, or nothing, with a one-line warning, for a file that does not match (the
+caller then rebuilds it).  So generated code runs only if this user's own process wrote it,
+and only as the function it was written for (its file's name, the function's name and the
+hash of its sources, is signed with it: a valid file of another function copied over it does
+not match); a checksum computed by anyone without the key does not match.
+
+Where no private key can be kept (a key file others can read, a link, not a regular file, a
+read-only home), one warning per process names the key file and why, and nothing keyed is
+cached.  A file that guards against damage and staleness rather than planting (numba's
+manifest, whose files numba loads unchecked from the folder, as Python its ``.pyc`` files, so
+that whoever can plant a manifest there can plant code anyway) is then sealed with a plain
+SHA-256 (``unkeyed=True``), so that numba's cache is still checked and kept, not dropped by
+every job.
 """
 
 from __future__ import annotations
 
+import errno
 import functools
 import hashlib
 import hmac
@@ -48,59 +59,89 @@ def key_file() -> Path:
     return Path(base) / "rotorvib" / "cache.key"
 
 
-def _read_key(path: Path) -> bytes | None:
-    """The key at ``path`` if it is a regular file of this user that nobody else can read or
-    write (opened without following a link), else None."""
+def _read_key(path: Path) -> tuple[bytes | None, str]:
+    """The key at ``path`` and ``""``, or None and why it is refused (``""``: there is none).
+    The file must be a regular file of this user that nobody else can read or write; it is
+    opened without following a link and without blocking (a FIFO would block the open, and
+    the job, for ever) and checked on the descriptor before anything is read."""
     try:
-        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_CLOEXEC)
-    except OSError:
-        return None
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
+    except FileNotFoundError:
+        return None, ""
+    except OSError as error:
+        if error.errno == errno.ELOOP:
+            return None, "it is a symbolic link"
+        return None, f"it cannot be opened ({error.strerror})"
     try:
         info = os.fstat(fd)
-        private = stat.S_ISREG(info.st_mode) and info.st_uid == os.getuid() and \
-            not info.st_mode & 0o077
-        key = os.read(fd, 256).strip() if private else b""
+        if not stat.S_ISREG(info.st_mode):
+            return None, "it is not a regular file"
+        if info.st_uid != os.getuid():
+            return None, f"it belongs to uid {info.st_uid}, not to this user"
+        if info.st_mode & 0o077:
+            return None, f"others can read or write it (mode {stat.S_IMODE(info.st_mode):o})"
+        key = os.read(fd, 256).strip()
     finally:
         os.close(fd)
-    return key if len(key) == 64 else None
+    if len(key) != 64:
+        return None, "it does not hold a key (64 hexadecimal digits)"
+    return key, ""
+
+
+def _refuse_key(path: Path, why: str) -> None:
+    print(f"rotorvib: cache key {path} refused: {why}; generated code and memos are not "
+          "cached, numba's cache is checked without the key (delete the file, or fix its "
+          "folder, for a new key)", file=sys.stderr)
 
 
 @functools.cache
 def user_key() -> bytes | None:
     """This user's cache key (32 random bytes, hex), made on first use with mode 600 in a
     folder of mode 700 (written aside and linked into place, so that processes starting at
-    once agree on one key); None where it cannot be kept privately (no caching then)."""
+    once agree on one key); None, with one warning per process naming the file and why, where
+    it cannot be kept privately (nothing keyed is cached then)."""
     path = key_file()
-    if (key := _read_key(path)) is not None:
-        return key
-    try:
-        path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".key-")
-        with os.fdopen(fd, "w") as fh:
-            fh.write(secrets.token_hex(32) + "\n")
+    key, why = _read_key(path)
+    if key is None and not why:
         try:
-            os.link(tmp, path)
-        except FileExistsError:
-            pass                                      # another process made it first
-        finally:
-            os.unlink(tmp)
-    except OSError:
-        return None
-    return _read_key(path)
-
-
-def _digest(text: str) -> str | None:
-    key = user_key()
+            path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".key-")
+            with os.fdopen(fd, "w") as fh:
+                fh.write(secrets.token_hex(32) + "\n")
+            try:
+                os.link(tmp, path)
+            except FileExistsError:
+                pass                                      # another process made it first
+            finally:
+                os.unlink(tmp)
+        except OSError as error:
+            why = f"it cannot be made ({error.strerror})"
+        else:
+            key, why = _read_key(path)
     if key is None:
-        return None
-    return hmac.new(key, text.encode("utf-8", "surrogateescape"), hashlib.sha256).hexdigest()
+        _refuse_key(path, why or "it vanished as it was made")
+    return key
 
 
-def write_checked(path: str | Path, text: str) -> bool:
-    """:func:`write_atomic` of ``text`` preceded by a line holding its keyed digest; False,
-    writing nothing, where there is no key (:func:`user_key`)."""
-    digest = _digest(text)
-    return digest is not None and write_atomic(path, f"{digest}\n{text}")
+UNKEYED = "sha256:"
+
+
+def _seal(path: str | Path, text: str, unkeyed: bool) -> str | None:
+    """The seal of ``text`` written at ``path``: its name and text's HMAC under the user's key;
+    where there is none, their plain SHA-256 (prefixed :data:`UNKEYED`) if ``unkeyed``, else
+    None."""
+    message = f"{Path(path).name}\0{text}".encode("utf-8", "surrogateescape")
+    key = user_key()
+    if key is not None:
+        return hmac.new(key, message, hashlib.sha256).hexdigest()
+    return UNKEYED + hashlib.sha256(message).hexdigest() if unkeyed else None
+
+
+def write_checked(path: str | Path, text: str, *, unkeyed: bool = False) -> bool:
+    """:func:`write_atomic` of ``text`` preceded by a line holding its seal (:func:`_seal`);
+    False, writing nothing, where there is no key and not ``unkeyed``."""
+    seal = _seal(path, text, unkeyed)
+    return seal is not None and write_atomic(path, f"{seal}\n{text}")
 
 
 def warn_damaged(path: str | Path, what: str = "") -> None:
@@ -117,22 +158,27 @@ def discard(path: str | Path) -> None:
         pass
 
 
-def read_checked(path: str | Path) -> str | None:
-    """The text :func:`write_checked` wrote to ``path`` for this user; None where there is no
-    such file or no key, and None with a warning (the file deleted) where it cannot be read as
-    UTF-8 or its keyed digest does not match."""
+def read_checked(path: str | Path, *, unkeyed: bool = False) -> str | None:
+    """The text :func:`write_checked` wrote to ``path`` (under this name) for this user; None
+    where there is no such file or no seal to check it with, None with the file deleted where
+    ``unkeyed`` and it was sealed the other way (with a key while there is none, or without
+    one while there is: it is rebuilt, not damaged), and None with a warning (the file
+    deleted) where it cannot be read as UTF-8 or its seal does not match."""
     try:
         raw = Path(path).read_bytes()
     except OSError:
         return None
     try:
-        digest, _, text = raw.decode("utf-8").partition("\n")
+        seal, _, text = raw.decode("utf-8").partition("\n")
     except UnicodeDecodeError:
-        digest, text = "", ""
-    expected = _digest(text)
+        seal, text = "", ""
+    expected = _seal(path, text, unkeyed)
     if expected is None:
         return None
-    if not hmac.compare_digest(digest.encode("utf-8", "surrogateescape"), expected.encode()):
+    if unkeyed and seal.startswith(UNKEYED) != expected.startswith(UNKEYED):
+        discard(path)
+        return None
+    if not hmac.compare_digest(seal.encode("utf-8", "surrogateescape"), expected.encode()):
         warn_damaged(path)
         discard(path)
         return None

@@ -14,10 +14,16 @@ Given the rule that makes the file in this run and the hash of the configuration
 workflow passes both as the parameter :data:`rotorvib.pipeline.job.INPUT_PRODUCERS_PARAM`), it also
 refuses a dataset made by another rule or under another configuration (copied in, restored from
 another run, or marked current with ``--touch``).
+
+A full disk is said as such, naming the file: the netCDF library reports it as something else
+(``Permission denied`` where the file could not even be created, ``NetCDF: HDF error`` where
+it ran out midway), so a failed write on a file system left with less than :data:`FULL` free is
+reported as no space left, and the partial file, which only holds the space, removed.
 """
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
@@ -71,6 +77,10 @@ def _date_attrs() -> dict:
 class DatasetError(ValueError):
     """A dataset cannot be read, or is not what its rule wrote."""
 
+
+#: Free bytes below which a failed write is put down to a full file system (HDF5 writes its
+#: data and metadata in pieces of kilobytes to a megabyte).
+FULL = 1 << 20
 
 #: The global attribute holding the checksum of a whole dataset (:func:`content_sha256`).
 CHECKSUM = "content_sha256"
@@ -208,5 +218,22 @@ def write_dataset(ds: xr.Dataset, path: str | Path, provenance: Provenance) -> P
             encoding[name] = {"zlib": True, "complevel": 4, "shuffle": True, "_FillValue": None}
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    out.to_netcdf(path, engine="netcdf4", format="NETCDF4", encoding=encoding)
+    try:
+        out.to_netcdf(path, engine="netcdf4", format="NETCDF4", encoding=encoding)
+    except (OSError, RuntimeError) as error:
+        free = _free_bytes(path.parent)
+        if getattr(error, "errno", None) != errno.ENOSPC and (free is None or free >= FULL):
+            raise
+        path.unlink(missing_ok=True)
+        raise OSError(errno.ENOSPC, f"no space left on device to write the dataset ({free} "
+                      f"bytes free; the netCDF library said: {error})", str(path)) from None
     return path
+
+
+def _free_bytes(folder: Path) -> int | None:
+    """The bytes free for this user on ``folder``'s file system, None where it cannot say."""
+    try:
+        info = os.statvfs(folder)
+    except OSError:
+        return None
+    return info.f_bavail * info.f_frsize

@@ -6,9 +6,11 @@ balancer's integrators call the right-hand sides, analysers and stop test of oth
 And it trusts its files: a damaged index or code file (``*.nbi``, ``*.nbc``) fails every later
 process that loads it.  :func:`drop_if_stale`, which the package calls before it compiles or
 loads anything, keeps a manifest in the package's cache folder (a checked file,
-:mod:`rotorvib.io.cache_files`): the hash of all the package's modules and the SHA-256 of every
-numba file it has seen.  It empties the folder's numba files when the sources changed or,
-with a one-line warning, when the manifest itself is damaged; when a file it recorded no
+:mod:`rotorvib.io.cache_files`, sealed without the user's key where that key is unusable, so
+that numba's cache is still checked and used then, not dropped by every job): the hash of all
+the package's modules and the SHA-256 of every numba file it has seen.  It empties the
+folder's numba files when the sources changed or, with a one-line warning, when the manifest
+itself is damaged; when a file it recorded no
 longer matches, it deletes, with a warning, the files of that function only, which numba then
 compiles again.  :func:`record` adds the files a process wrote (the package calls it once a compiled
 function has been compiled or loaded).  :func:`compile_lock` lets processes that start at once
@@ -58,7 +60,7 @@ def _file_digest(path: Path) -> str | None:
 def _manifest(cache: Path) -> dict | None:
     """The manifest ``{"sources": digest, "files": {name: sha256}}``, None where there is none,
     ``{}`` where it is damaged."""
-    text = read_checked(cache / MANIFEST)
+    text = read_checked(cache / MANIFEST, unkeyed=True)
     if text is None:
         return {} if (cache / MANIFEST).exists() else None
     try:
@@ -106,7 +108,7 @@ def drop_if_stale(package_dir: Path) -> bool:
     except OSError:
         return True                      # not recorded: the next process tries again
     write_checked(cache / MANIFEST, json.dumps({"sources": digest, "files": kept},
-                                               sort_keys=True))
+                                               sort_keys=True), unkeyed=True)
     return True
 
 
@@ -118,7 +120,7 @@ def record(package_dir: Path) -> None:
     for path in _numba_files(cache):
         if path.name not in manifest["files"] and (digest := _file_digest(path)):
             manifest["files"][path.name] = digest
-    write_checked(cache / MANIFEST, json.dumps(manifest, sort_keys=True))
+    write_checked(cache / MANIFEST, json.dumps(manifest, sort_keys=True), unkeyed=True)
 
 
 @contextmanager
