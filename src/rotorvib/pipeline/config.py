@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from rotorvib.checks import SMALLEST_NORMAL
+from rotorvib.checks import MAGNITUDES
 from rotorvib.pipeline.config_checks import problems
 from rotorvib.pipeline.strict_yaml import (ConfigError, DuplicateKey, check_shape, check_value,
                                        load_value, load_yaml)
@@ -106,6 +106,8 @@ def _allowed(schema: dict) -> str:
             f"{n_min}" if n_min is not None and n_min == n_max else f"{n_min or 0}..{n_max or 'n'}"
         )
         parts.append(f"a list of {size} items, each {_allowed(items)}")
+    elif kind is None and ("pattern" in schema or "maxLength" in schema):
+        parts.append("a string")
     elif kind is not None:
         parts.append({"number": "a number", "integer": "an integer", "string": "a string",
                       "boolean": "true or false", "object": "a mapping"}.get(kind, str(kind)))
@@ -118,6 +120,12 @@ def _allowed(schema: dict) -> str:
         parts.append(" and ".join(bounds))
     if "enum" in schema:
         parts.append("one of " + ", ".join(map(repr, schema["enum"])))
+    if "maxLength" in schema:
+        parts.append(f"of {schema.get('minLength', 0)} to {schema['maxLength']} characters")
+    elif "minLength" in schema:
+        parts.append(f"of at least {schema['minLength']} characters")
+    if "pattern" in schema:
+        parts.append(f"matching the pattern {schema['pattern']}")
     text = " ".join(parts) if parts else "any value"
     if "description" in schema:
         text += f" ({schema['description']})"
@@ -143,8 +151,19 @@ def _describe(error: jsonschema.ValidationError) -> str:
         extra = sorted(set(error.instance) - set(error.schema.get("properties", {})))
         return (f"config key '{_key(path)}' has unknown key(s) {', '.join(map(repr, extra))}; "
                 f"allowed keys: {allowed}")
-    return (f"config key '{_key(path)}': {error.instance!r} is not allowed; "
+    if "propertyNames" in error.absolute_schema_path:    # a name of a mapping's entry
+        return (f"config key '{_key(path)}': the name {_shown(error.instance)} is not allowed; "
+                f"must be {_allowed(error.schema)}")
+    return (f"config key '{_key(path)}': {_shown(error.instance)} is not allowed; "
             f"must be {_allowed(error.schema)}")
+
+
+def _shown(value) -> str:
+    """``repr(value)``, a long text cut to its first 40 characters and its length, so that a
+    message stays one readable line (a 1 MB text is shown by what it starts with)."""
+    if isinstance(value, str) and len(value) > 60:
+        return f"{value[:40]!r}... ({len(value)} characters)"
+    return repr(value)
 
 
 def _is_number(text: str) -> bool:
@@ -156,31 +175,47 @@ def _is_number(text: str) -> bool:
 
 
 def _non_finite(config, path=()) -> list[str]:
-    """Every NaN, infinite or subnormal number in the configuration (JSON Schema bounds never
-    reject NaN, and a subnormal passes any bound "> 0")."""
+    """Every number of the configuration that the library would refuse (JSON Schema bounds never
+    reject NaN, and a subnormal passes any bound "> 0"): NaN, an infinity, or a number that is
+    neither 0 nor within the library's magnitudes (:data:`rotorvib.checks.MAGNITUDES`, the bound
+    every entry point applies to its arguments). Refused here, such a number is named by its
+    key before any job; accepted, it failed inside a job naming a library field or a derived
+    quantity (1e308 as a disk mass, 1e-300 as a stiffness: a hostile-input audit)."""
     if isinstance(config, dict):
         return [p for k, v in config.items() for p in _non_finite(v, path + (k,))]
     if isinstance(config, list):
         return [p for i, v in enumerate(config) for p in _non_finite(v, path + (str(i),))]
     if isinstance(config, float) and not math.isfinite(config):
         return [f"config key '{_key(path)}': {config!r} is not allowed; must be a finite number"]
-    if isinstance(config, float) and 0 < abs(config) < SMALLEST_NORMAL:
-        return [f"config key '{_key(path)}': {config!r} is not allowed; must be 0 or at least "
-                f"{SMALLEST_NORMAL:.4g} in magnitude (a subnormal number has lost precision)"]
+    if (isinstance(config, (int, float)) and not isinstance(config, bool) and config != 0
+            and not MAGNITUDES[0] <= abs(config) <= MAGNITUDES[1]):
+        shown = f"{config:.6g}" if isinstance(config, int) else repr(config)
+        return [(f"config key '{_key(path)}': {shown} is not allowed; must be 0 or between "
+                 f"{MAGNITUDES[0]:g} and {MAGNITUDES[1]:g} in magnitude (beyond, products "
+                 "underflow or overflow; a subnormal number has lost precision already)")]
     return []
 
 
+#: Unicode categories refused in a key or a text: control characters (a newline among them),
+#: format characters (the bidirectional overrides and isolates U+202A-U+202E and U+2066-U+2069,
+#: which reorder what a reader sees, and zero-width characters), line and paragraph separators
+#: (U+2028, U+2029: a line break to many readers of a CSV or a log), surrogates.
+_HIDDEN = frozenset({"Cc", "Cf", "Zl", "Zp", "Cs"})
+
+
 def _bad_text(config, path=()) -> list[str]:
-    """Every key or string holding a control character (a newline among them) or starting or
-    ending with whitespace: a name or a text shown in the report, a table or a path must read
-    as written (found by a hostile-input audit: a study name ending in a newline was taken)."""
+    """Every key or string holding a character of :data:`_HIDDEN` or starting or ending with
+    whitespace: a name or a text shown in the report, a table or a path must read as written
+    (found by hostile-input audits: a study name ending in a newline was taken, and so were
+    U+2028 and U+202E)."""
 
     def bad(text: str) -> bool:
-        return text != text.strip() or any(unicodedata.category(ch) == "Cc" for ch in text)
+        return text != text.strip() or any(unicodedata.category(ch) in _HIDDEN for ch in text)
 
     def problem(key, text, what):
-        return (f"config key '{_key(key)}': {what} {text!r} is not allowed; must be printable "
-                "text without control characters or surrounding whitespace")
+        return (f"config key '{_key(key)}': {what} {_shown(text)} is not allowed; must be "
+                "printable text without control characters (format, bidirectional override "
+                "and line separator ones among them) or surrounding whitespace")
 
     found = []
     if isinstance(config, dict):
