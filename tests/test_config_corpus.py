@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from rotorvib.pipeline import config_checks
-from rotorvib.pipeline.config import ConfigError, load_yaml, validate_config
+from rotorvib.pipeline.config import ConfigError, load_yaml, main, validate_config
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = load_yaml(ROOT / "config/schema.yaml")
@@ -211,7 +211,8 @@ def test_the_corpus_is_large_and_covers_every_section():
         CONFIG["paper_b"]) - {"n", "initial_state"} | set(CONFIG["paper_c"]) - {"n"}
 
 
-@pytest.mark.parametrize("key, value, named", CASES, ids=[f"{k}={repr(v)[:80]}" for k, v, _ in CASES])
+@pytest.mark.parametrize("key, value, named", CASES,
+                         ids=[f"{k}={repr(v)[:80]}" for k, v, _ in CASES])
 def test_every_malformed_config_is_rejected_naming_its_key(key, value, named):
     message = problems(_set(CONFIG, key, value))
     assert f"'{named or key}'" in message, message
@@ -335,3 +336,22 @@ def test_snakemake_stops_before_any_job(tmp_path, text, named, snakemake_here):
     assert run.returncode != 0
     assert named in run.stdout + run.stderr
     assert "Job " not in run.stdout
+
+
+@pytest.mark.parametrize("entries, named", [
+    # a duplicate key inside a value: Snakemake kept the last one and the workflow planned
+    (["paper_b={machine: {zeta: 0.01, zeta: 0.02}}"],
+     "--config paper_b:1:24: duplicate key 'zeta' (first at line 1)"),
+    # a key given twice: Snakemake merged the two values
+    (["results=out", "results=other"], "--config 'results=other': duplicate key 'results'"),
+    (["paper_c={rotor: {M: 0777}}"], "--config paper_c.rotor.M:1:1: '0777' reads differently"),
+    (["paper_c={rotor: {M: 1.0e+308}}"], "config key 'paper_c.rotor.M': 1e+308 is not allowed"),
+    (["results=out\u2028x"], "config key 'results': the text 'out\\u2028x' is not allowed"),
+])
+def test_command_line_entries_are_read_from_their_text(entries, named, snakemake_here):
+    """``--config`` is read from the entries as typed (Snakemake's ``config_args``), so a
+    command gets the verdict ``python -m rotorvib.pipeline.config`` gives, before any job."""
+    run = snakemake_here("-n", "--config", *entries)
+    assert run.returncode != 0 and named in run.stdout + run.stderr, run.stdout + run.stderr
+    assert "Job " not in run.stdout
+    assert main(["config/config.yaml", "--config", *entries]) == 1

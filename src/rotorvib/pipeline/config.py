@@ -19,69 +19,18 @@ from __future__ import annotations
 
 import copy
 import math
-import re
 import unicodedata
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import yaml
-
 from rotorvib.checks import MAGNITUDES
 from rotorvib.pipeline.config_checks import problems
-from rotorvib.pipeline.strict_yaml import (ConfigError, DuplicateKey, check_shape, check_value,
-                                       load_value, load_yaml)
+from rotorvib.pipeline.config_sources import command_line_overrides, merge
+from rotorvib.pipeline.strict_yaml import ConfigError, load_yaml
 
 if TYPE_CHECKING:
     import jsonschema
-
-
-def typed_overrides(overrides: dict) -> dict:
-    """``--config`` overrides with the values inside nested keys read as YAML.
-
-    Snakemake reads ``--config paper_c='{den_hartog: {d: 0.09}}'`` with YAML's base loader,
-    which leaves every nested value a string ("0.09"); each such string is read again here as
-    a value of a configuration file would be (:func:`rotorvib.pipeline.strict_yaml.load_value`:
-    ``0.09`` and ``1e-9`` are numbers, ``printed`` stays a string, ``0777`` is refused naming
-    its key). Top-level values, which Snakemake already types, are kept. The overrides' shape
-    is checked first (:func:`rotorvib.pipeline.strict_yaml.check_value`: Snakemake keeps an
-    alias as one shared object, which is typed once). Only ``--config`` values come here: a
-    configuration file is read once, by :func:`load_yaml`."""
-    check_value(overrides, "--config")
-    typed_once: dict[int, Any] = {}
-
-    def typed(value, path):
-        if id(value) in typed_once:
-            return typed_once[id(value)]
-        if isinstance(value, dict):
-            result = {key: typed(item, path + (key,)) for key, item in value.items()}
-        elif isinstance(value, list):
-            result = [typed(item, path + (str(i),)) for i, item in enumerate(value)]
-        elif isinstance(value, str):
-            try:
-                result = load_value(value, f"--config {_key(path)}")
-            except yaml.YAMLError:
-                result = value
-        else:
-            result = value
-        if isinstance(value, (dict, list)):
-            typed_once[id(value)] = result
-        return result
-
-    return {key: typed(value, (key,)) if isinstance(value, (dict, list)) else value
-            for key, value in overrides.items()}
-
-
-def workflow_config(base_files, files, overrides: dict, *, replace_base: bool = False) -> dict:
-    """The configuration of a ``snakemake`` command, read here rather than taken from
-    Snakemake's own reading (YAML 1.1, templates evaluated): the workflow's ``configfile``
-    ``base_files`` (unless ``replace_base``, Snakemake's ``--replace-workflow-config``), then
-    each ``--configfile`` of ``files`` in order, then the ``--config`` ``overrides``, merged
-    key by key as Snakemake merges them."""
-    config: dict = {}
-    for path in ([] if replace_base else list(base_files)) + list(files):
-        config = merge(config, load_yaml(path))
-    return merge(config, typed_overrides(overrides))
 
 
 def _fill_defaults(instance: Any, schema: dict) -> None:
@@ -326,18 +275,6 @@ def validate_config(config: dict, schema: dict) -> dict:
     return filled
 
 
-def merge(base: dict, override: dict) -> dict:
-    """``base`` updated by ``override`` key by key at every depth (as Snakemake merges
-    ``--configfile`` files)."""
-    merged = copy.deepcopy(base)
-    for key, value in override.items():
-        if isinstance(value, dict) and isinstance(merged.get(key), dict):
-            merged[key] = merge(merged[key], value)
-        else:
-            merged[key] = copy.deepcopy(value)
-    return merged
-
-
 def check_config(config: dict, schema: dict) -> dict:
     """The workflow's configuration, validated: the schema (:func:`validate_config`), then the
     checks beyond it (:func:`rotorvib.pipeline.config_checks.problems`); :class:`ConfigError`
@@ -346,50 +283,6 @@ def check_config(config: dict, schema: dict) -> dict:
     if found := problems(checked):
         raise ConfigError("invalid configuration:\n  " + "\n  ".join(found))
     return checked
-
-
-#: A ``--config`` key as Snakemake accepts it (snakemake.cli.parse_config).
-_TOP_KEY = re.compile(r"[a-zA-Z_][\w-]*\w$")
-
-
-def command_line_overrides(entries) -> dict:
-    """``--config KEY=VALUE ...`` entries as Snakemake reads them (an integer, a number,
-    ``true``/``false``, else YAML read as text, else the text), each value's shape checked
-    first; :class:`ConfigError` naming the entry for what Snakemake would stop on with a
-    traceback: an entry without ``=`` (a target written after ``--config`` is taken for one)
-    and a key that is not a top-level name (``paper_b.shards=2``)."""
-    overrides: dict = {}
-    for entry in entries:
-        key, sep, text = entry.partition("=")
-        if not sep:
-            raise ConfigError(f"--config {entry!r}: not KEY=VALUE; a target written after "
-                              "--config is read as one of its entries: put targets first")
-        if not _TOP_KEY.match(key):
-            raise ConfigError(f"--config {entry!r}: {key!r} is not a top-level key; write a "
-                              "nested key as YAML, e.g. paper_b='{shards: 2}'")
-        overrides[key] = _snakemake_value(text, f"--config {key}")
-    return typed_overrides(overrides)
-
-
-def _snakemake_value(text: str, name: str):
-    """One ``--config`` value read as Snakemake reads it, its YAML shape checked first."""
-    for parse in (int, float):
-        try:
-            return parse(text)
-        except ValueError:
-            pass
-    if text in ("true", "false", "True", "False"):
-        return text.lower() == "true"
-    check_shape(text, name)
-    try:
-        load_value(text, name)            # a key given twice, which Snakemake would drop
-    except (yaml.YAMLError, ConfigError) as error:
-        if isinstance(error, DuplicateKey):
-            raise
-    try:
-        return yaml.load(text, Loader=yaml.BaseLoader)
-    except yaml.YAMLError:
-        return text
 
 
 def check_files(paths, schema_path: str | Path = "config/schema.yaml", overrides=()) -> dict:
