@@ -19,6 +19,7 @@ from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
 from rotorvib.pipeline.report import categories, entry_label, names_in, subcategory
+from rotorvib.pipeline.report_pages import read_docutils_settings_last
 from rotorvib.pipeline.slurm_profile import batch_rules
 from rotorvib.pipeline.snakemake_rules import (
     add_params,
@@ -34,6 +35,10 @@ from rotorvib.pipeline.snakemake_rules import (
 # papers' data are read from there, so that it runs from another working directory
 # (`--directory`) or as a module of another workflow.
 WORKFLOW_ROOT = Path(str(workflow.current_basedir)).resolve().parents[1]
+
+# Snakemake's rendering of the report's words reads the workflow's docutils.conf (no include,
+# no raw HTML) wherever it runs, a caller's folder included (rotorvib.pipeline.report_pages).
+read_docutils_settings_last(WORKFLOW_ROOT / "docutils.conf")
 
 
 def source(relative):
