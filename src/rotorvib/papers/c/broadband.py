@@ -22,6 +22,7 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
+from rotorvib.checks import nonnegative_array, number
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.progress import Progress
 from rotorvib.io.variables import described
@@ -45,8 +46,11 @@ DESIGNS = {"table2": "Table 2 (paper)",
 
 
 def added_mass(x) -> np.ndarray:
-    """Added mass ``2 (m1 + m2)`` (kg) of dual-absorber design vectors ``x[..., 8]``."""
-    x = np.asarray(x, float)
+    """Added mass ``2 (m1 + m2)`` (kg) of dual-absorber design vectors ``x[..., 8]``, each
+    entry finite and >= 0."""
+    x = nonnegative_array("x", x, "a design value")
+    if x.shape[-1:] != (8,):
+        raise ValueError(f"x: shape {x.shape}, expected (..., 8): m1, m2, k1, k2, c1, c2, d1, d2")
     return 2 * (x[..., 0] + x[..., 1])
 
 
@@ -158,7 +162,9 @@ def free_spring_dual(rotor: Rotor, mass: float, d: float, band_w) -> tuple[Absor
 
 def tuned_mass_floor(rotor: Rotor, k_min: float) -> float:
     """Least added mass (kg) of two sets both tuned to ``omega_n`` (``2 k / m = omega_n^2``)
-    when every spring is at least ``k_min``: two sets of two bodies of ``2 k_min / omega_n^2``."""
+    when every spring is at least ``k_min``: two sets of two bodies of ``2 k_min / omega_n^2``;
+    ``k_min`` finite and >= 0 (N/m)."""
+    k_min = number("k_min", k_min, inclusive=True, what=" (N/m)")
     return 4 * 2 * k_min / rotor.omega_n**2
 
 
