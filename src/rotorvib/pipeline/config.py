@@ -1,12 +1,15 @@
 """Loading, validating and fingerprinting the pipeline configuration.
 
-Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.pipeline.strict_yaml`): a duplicate key,
-a syntax error or a scalar that YAML 1.1 reads otherwise is reported with its file, line and
-column, and ``1e-9`` is a number rather than a string.  The configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
-computation: every number must be finite, an integer must be written as one, and the schema's
-extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``, ``x-at-least``, a
-cap on the points of a grid).  Defaults given in the schema are filled in, and every
-violation is reported with the dotted key it concerns and what is allowed, e.g.::
+Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.pipeline.strict_yaml`): a duplicate
+key, a syntax error or a scalar that YAML 1.1 reads otherwise is reported with its file, line
+and column, and ``1e-9`` is a number rather than a string (at every door, the ``--config`` text
+and a module's ``config:`` included: :mod:`rotorvib.pipeline.config_sources`).  The
+configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
+computation: every number must be finite and 0 or within the library's magnitudes, every text
+free of control, format and separator characters, an integer must be written as one, and the
+schema's extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``,
+``x-at-least``, a cap on the points of a grid).  Defaults given in the schema are filled in,
+and every violation is reported with the dotted key it concerns and what is allowed, e.g.::
 
     config key 'paper_c.rotor.M': -1.0 is not allowed; must be a number > 0 (disk mass, kg)
 
