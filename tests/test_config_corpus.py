@@ -230,6 +230,8 @@ def test_every_malformed_config_is_rejected_naming_its_key(key, value, named):
       "must be a string of 1 to 200 characters")),
     ("paper_c.rotor.M", 1e308, ("1e+308 is not allowed; must be 0 or between 1e-100 and "
                                 "1e+100 in magnitude")),
+    ("paper_b.balance_studies", {"b" * 250: CONFIG["paper_b"]["balance_studies"]["beta"]},
+     "must be a string of 1 to 64 characters matching the pattern ^[a-z][a-z0-9_]{0,63}$"),
 ])
 def test_a_refusal_says_what_is_allowed_in_one_line(key, value, expected):
     """A pattern is stated with its words and its length bounds (it read "must be any value"),

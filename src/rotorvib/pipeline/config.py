@@ -270,7 +270,10 @@ def validate_config(config: dict, schema: dict) -> dict:
     _fill_defaults(filled, schema)
     errors = sorted(_validator_class()(schema).iter_errors(filled),
                     key=lambda e: list(map(str, e.absolute_path)))
-    messages = _non_finite(filled) + _bad_text(filled) + [_describe(e) for e in errors]
+    # a value that breaks two rules described alike (a name too long for both its pattern and
+    # its maxLength) is reported once
+    messages = list(dict.fromkeys(_non_finite(filled) + _bad_text(filled)
+                                  + [_describe(e) for e in errors]))
     if not messages:
         messages = _check_extensions(filled, schema, {**schema, "__config__": filled})
     if messages:
