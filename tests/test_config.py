@@ -122,7 +122,7 @@ def test_both_parsers_refuse_a_duplicate_key_at_its_place(tmp_path):
 def test_nested_command_line_overrides_are_read_as_yaml():
     """Snakemake leaves the values inside `--config paper_c='{den_hartog: {d: 0.09}}'` as
     text; they are typed as a configuration file would type them."""
-    from rotorvib.pipeline.config import typed_overrides
+    from rotorvib.pipeline.config_sources import typed_overrides
 
     given = {"paper_c": {"den_hartog": {"d": "0.09"}, "ga": {"seed": "7", "tol": "1e-9"}},
              "paper_b": {"kinematics": ["printed", "consistent"]}, "top": 3}

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from rotorvib.pipeline import config_checks
-from rotorvib.pipeline.config import ConfigError, load_yaml, validate_config
+from rotorvib.pipeline.config import ConfigError, load_yaml, main, validate_config
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = load_yaml(ROOT / "config/schema.yaml")
@@ -169,6 +169,18 @@ CASES = [
     ("paper_b.basin", {"n": 720, "eps_bar": 0.012, "cases": [[0.2, 0.006], [1.0, 0.006],
                                                               [0.5, 0.008], [1.0, 0.01]]},
      "paper_b.basin.n"),
+    # found by a hostile-input audit: magnitudes the library refuses (they failed inside a job
+    # naming a library field or a derived quantity), a study name too long for its file names,
+    # separators and bidirectional overrides in a text, a 1 MB text
+    ("paper_c.rotor.M", 1e308, None), ("paper_c.table2.k2", 1e-300, None),
+    ("paper_b.machine.M", 1e308, None), ("paper_b.ross_check.shaft.E", 1e308, None),
+    ("paper_b.balance_studies", {"b" * 250: {"where": "x", "axis": "beta",
+                                             "range": {"min": 0.1, "max": 1.0, "n": 3},
+                                             "fixed": {"mass": 0.01, "eps_bar": 0.012,
+                                                       "speed": 200.0}}}, None),
+    ("paper_b.balance_studies.beta.where", "Figs\u20288-10", None),
+    ("paper_b.balance_studies.beta.where", "Figs \u202e01-8", None),
+    ("paper_b.balance_studies.beta.where", "x" * 1_000_000, None),
     # discrepancy analysis
     ("discrepancies.inversion.range", [10.0, 0.1], None),
     ("discrepancies.inversion.n_scan", 1, None),
@@ -206,10 +218,34 @@ def test_the_corpus_is_large_and_covers_every_section():
         CONFIG["paper_b"]) - {"n", "initial_state"} | set(CONFIG["paper_c"]) - {"n"}
 
 
-@pytest.mark.parametrize("key, value, named", CASES, ids=[f"{k}={v!r}" for k, v, _ in CASES])
+@pytest.mark.parametrize("key, value, named", CASES,
+                         ids=[f"{k}={repr(v)[:80]}" for k, v, _ in CASES])
 def test_every_malformed_config_is_rejected_naming_its_key(key, value, named):
     message = problems(_set(CONFIG, key, value))
     assert f"'{named or key}'" in message, message
+
+
+@pytest.mark.parametrize("key, value, expected", [
+    ("paper_b.design_rule.machines", {"Bad name": {"zeta": 0.01, "eps_bar": 0.012,
+                                                   "speed": 200.0}},
+     ("the name 'Bad name' is not allowed; must be a string of 1 to 31 characters matching the "
+      "pattern ^[a-z][a-z0-9_]{0,30}$ (a lowercase letter, then lowercase letters, digits or _")),
+    ("results", "../elsewhere", ("must be a string of 1 to 200 characters matching the "
+                                 "pattern ^[A-Za-z0-9_]")),
+    ("paper_b.balance_studies.beta.where", "x" * 1_000_000,
+     ("'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx'... (1000000 characters) is not allowed; "
+      "must be a string of 1 to 200 characters")),
+    ("paper_c.rotor.M", 1e308, ("1e+308 is not allowed; must be 0 or between 1e-100 and "
+                                "1e+100 in magnitude")),
+    ("paper_b.balance_studies", {"b" * 250: CONFIG["paper_b"]["balance_studies"]["beta"]},
+     "must be a string of 1 to 64 characters matching the pattern ^[a-z][a-z0-9_]{0,63}$"),
+])
+def test_a_refusal_says_what_is_allowed_in_one_line(key, value, expected):
+    """A pattern is stated with its words and its length bounds (it read "must be any value"),
+    and a long value is shown by its start: one line a reader can act on."""
+    message = problems(_set(CONFIG, key, value))
+    assert expected in message and len(message.splitlines()) == 2, message
+    assert "any value" not in message and len(message) < 600
 
 
 @pytest.mark.parametrize("text, expected", [
@@ -309,3 +345,22 @@ def test_snakemake_stops_before_any_job(tmp_path, text, named, snakemake_here):
     assert run.returncode != 0
     assert named in run.stdout + run.stderr
     assert "Job " not in run.stdout
+
+
+@pytest.mark.parametrize("entries, named", [
+    # a duplicate key inside a value: Snakemake kept the last one and the workflow planned
+    (["paper_b={machine: {zeta: 0.01, zeta: 0.02}}"],
+     "--config paper_b:1:24: duplicate key 'zeta' (first at line 1)"),
+    # a key given twice: Snakemake merged the two values
+    (["results=out", "results=other"], "--config 'results=other': duplicate key 'results'"),
+    (["paper_c={rotor: {M: 0777}}"], "--config paper_c.rotor.M:1:1: '0777' reads differently"),
+    (["paper_c={rotor: {M: 1.0e+308}}"], "config key 'paper_c.rotor.M': 1e+308 is not allowed"),
+    (["results=out\u2028x"], "config key 'results': the text 'out\\u2028x' is not allowed"),
+])
+def test_command_line_entries_are_read_from_their_text(entries, named, snakemake_here):
+    """``--config`` is read from the entries as typed (Snakemake's ``config_args``), so a
+    command gets the verdict ``python -m rotorvib.pipeline.config`` gives, before any job."""
+    run = snakemake_here("-n", "--config", *entries)
+    assert run.returncode != 0 and named in run.stdout + run.stderr, run.stdout + run.stderr
+    assert "Job " not in run.stdout
+    assert main(["config/config.yaml", "--config", *entries]) == 1

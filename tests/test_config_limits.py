@@ -13,7 +13,7 @@ import pytest
 import yaml
 
 from conftest import ROOT
-from rotorvib.pipeline.config import typed_overrides
+from rotorvib.pipeline.config_sources import typed_overrides
 from rotorvib.pipeline.strict_yaml import MAX_DEPTH, ConfigError, check_value
 
 LIMIT_BYTES = 1 << 30

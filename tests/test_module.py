@@ -5,8 +5,10 @@ folder, and run from another working directory (``--directory``). Every file the
 reads of its own (the schema, the papers' data, the Snakefile) is found beside its rules, not
 in the caller's folder."""
 
+import os
 import subprocess
 
+import pytest
 import yaml
 
 from workflow_runs import BIN, ROOT, copy_repository, environment
@@ -34,9 +36,12 @@ def _consumer(tmp_path, module_config: dict):
     return repo, consumer
 
 
-def _snakemake(cwd, *args, check=True):
+def _snakemake(cwd, *args, check=True, repo=None):
+    """Snakemake in ``cwd``, importing the package of ``repo`` (by default ``cwd``): a caller's
+    folder has none of its own, and the one installed may be another checkout's."""
+    env = environment(cwd, {"PYTHONPATH": environment(repo or cwd)["PYTHONPATH"]})
     run = subprocess.run([str(BIN / "snakemake"), *args], cwd=cwd, capture_output=True,
-                         text=True, env=environment(cwd), timeout=600)
+                         text=True, env=env, timeout=600)
     if check:
         assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     return run
@@ -44,17 +49,17 @@ def _snakemake(cwd, *args, check=True):
 
 def test_a_module_with_its_own_config_writes_where_the_caller_says(tmp_path):
     repo, consumer = _consumer(tmp_path, _reduced("out/rv"))
-    dry = _snakemake(consumer, "-n", "-j1")
+    dry = _snakemake(consumer, "-n", "-j1", repo=repo)
     assert "rotorvib_c_ga" in dry.stdout and "out/rv/paper_c/figures/fig5.png" in dry.stdout
-    _snakemake(consumer, "-j1", f"out/rv/{TARGET}")
+    _snakemake(consumer, "-j1", f"out/rv/{TARGET}", repo=repo)
     made = consumer / "out/rv" / TARGET
     assert made.is_file() and not (consumer / "results").exists()
     assert not (repo / "results").exists()
 
 
 def test_a_module_config_gets_the_same_checks(tmp_path):
-    _, consumer = _consumer(tmp_path, {"results": "out/rv", "paper_c": {"rotor": {"M": -5.0}}})
-    run = _snakemake(consumer, "-n", check=False)
+    repo, consumer = _consumer(tmp_path, {"results": "out/rv", "paper_c": {"rotor": {"M": -5.0}}})
+    run = _snakemake(consumer, "-n", check=False, repo=repo)
     assert run.returncode != 0
     assert "config key 'paper_c.rotor.M': -5.0 is not allowed" in run.stdout + run.stderr
     assert "Job " not in run.stdout
@@ -96,6 +101,76 @@ def test_snakedeploys_layout_runs_the_workflow_as_a_module(tmp_path):
     assert 'snakefile: \n        "workflow/Snakefile"' in text and "use rule * from rotorvib" in text
     snakefile.write_text(text.replace('"workflow/Snakefile"', f'"{repo / "workflow/Snakefile"}"'))
     (deployed / "config/config.yaml").write_text((repo / "config/config.yaml").read_text())
-    plan = _snakemake(deployed, "--summary", "all")   # every output, its rule and status
+    plan = _snakemake(deployed, "--summary", "all", repo=repo)   # every output, its rule and status
     assert "results/paper_c/figures/fig5.png\t" in plan.stdout and "\tc_ga\t" in plan.stdout
     assert not (repo / "results").exists()
+
+
+#: A module's ``config:`` as callers write it, over the file ``config.yaml`` in their folder.
+MODULE_PART = 'config: config["rotorvib"]'
+
+
+def _dry_run_as_module(tmp_path, text: str, config_line: str = MODULE_PART, before: str = "",
+                       *args: str) -> subprocess.CompletedProcess:
+    """``snakemake -n`` of a caller whose Snakefile reads ``text`` as its ``config.yaml`` and
+    gives this workflow (the working tree's, not a copy: a dry run writes nothing beside it)
+    ``config_line``, after the Python lines ``before``."""
+    (tmp_path / "config.yaml").write_text(text)
+    (tmp_path / "Snakefile").write_text(
+        f'configfile: "config.yaml"\n{before}\n\nmodule rotorvib:\n'
+        f'    snakefile: "{ROOT / "workflow/Snakefile"}"\n    {config_line}\n\n\n'
+        "use rule * from rotorvib as rotorvib_*\n")
+    return subprocess.run([str(BIN / "snakemake"), "-n", "-j1", *args], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300, check=False,
+                          env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+
+
+@pytest.mark.parametrize("text, config_line, refused", [
+    # YAML 1.1 readings of the caller's file (Snakemake read 0777 as 511, 1:30 as 90 and kept
+    # the last zeta): refused with file, line and column, as in a file given to the workflow
+    ("rotorvib:\n  paper_b:\n    ga:\n      seed: 0777\n", MODULE_PART,
+     "config.yaml:4:13: '0777' reads differently in YAML 1.1 and 1.2"),
+    ("rotorvib:\n  paper_b:\n    balance:\n      t_end: 1:30\n", MODULE_PART,
+     "config.yaml:4:14: '1:30' reads differently"),
+    ("rotorvib:\n  paper_b:\n    machine:\n      zeta: 0.01\n      zeta: 0.02\n", MODULE_PART,
+     "config.yaml:5:7: duplicate key 'zeta' (first at line 4)"),
+    # the whole of the caller's configuration, as snakedeploy writes the module
+    ("results: out\npaper_b:\n  progress: yes\n", "config: config",
+     "config.yaml:3:13: 'yes' reads differently"),
+    # out of the library's magnitudes: refused naming the key, before any job
+    ("rotorvib:\n  paper_c:\n    rotor:\n      M: 1.0e+308\n", MODULE_PART,
+     "config key 'paper_c.rotor.M': 1e+308 is not allowed; must be 0 or between 1e-100"),
+    # a mapping built in the Snakefile: no file to read again, what YAML 1.1 leaves is refused
+    ("{}\n", 'config: {"results": "out", "paper_b": {True: {}}}',
+     "the module's config: key True is a bool, not text"),
+])
+def test_a_module_config_is_read_as_a_file_is(tmp_path, text, config_line, refused):
+    run = _dry_run_as_module(tmp_path, text, config_line)
+    assert run.returncode != 0 and refused in run.stdout + run.stderr, run.stdout + run.stderr
+    assert "Job " not in run.stdout
+
+
+def test_a_module_config_changed_by_the_caller_after_reading_is_refused(tmp_path):
+    """Its change would be lost in reading the files again: the caller is told to give the
+    module a mapping of its own."""
+    run = _dry_run_as_module(tmp_path, "rotorvib:\n  results: out\n", MODULE_PART,
+                             'config["rotorvib"]["results"] = "elsewhere"')
+    assert run.returncode != 0
+    assert ("config key 'results' of the module's config (the caller's 'rotorvib.results') "
+            "differs from the files it was read from") in run.stdout + run.stderr
+
+
+def test_a_module_config_reads_an_exponent_as_a_number(tmp_path):
+    """YAML 1.1 reads 1e-10 as text; read again from the file, it is the number a file given to
+    the workflow holds, and the module plans its jobs."""
+    run = _dry_run_as_module(tmp_path, "rotorvib:\n  results: out\n  paper_c:\n"
+                                       "    time_response:\n      rtol: 1e-10\n")
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    assert "rotorvib_c_ga" in run.stdout
+
+
+def test_a_modules_callers_command_line_is_read_as_a_file_is(tmp_path):
+    run = _dry_run_as_module(tmp_path, "rotorvib:\n  results: out\n", MODULE_PART, "",
+                             "--config", "rotorvib={results: out, results: other}")
+    assert run.returncode != 0
+    assert "--config rotorvib:1:16: duplicate key 'results'" in run.stdout + run.stderr

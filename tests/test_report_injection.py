@@ -128,6 +128,27 @@ def test_our_docutils_calls_refuse_directives_even_unescaped(secret):
     assert '&quot;include&quot; directive disabled' in shown
 
 
+def test_snakemakes_rendering_refuses_directives_in_another_folder(secret, tmp_path):
+    """Run as another workflow's module, Snakemake renders the report in the caller's folder,
+    whose docutils.conf may enable what the project's disables: the workflow makes the
+    project's file the last docutils reads (common.smk), and it wins."""
+    (tmp_path / "docutils.conf").write_text(
+        "[general]\nraw_enabled: true\nfile_insertion_enabled: true\n")
+    rst = f"x\n\n.. include:: {secret}\n\n.. raw:: html\n\n   <b id=raw>raw</b>\n"
+    render = ("import sys; from docutils.core import publish_parts; "
+              "sys.stdout.write(publish_parts(sys.stdin.read(), writer_name='html')['body'])")
+    pinned = ("from pathlib import Path; from rotorvib.pipeline.report_pages import "
+              f"read_docutils_settings_last; read_docutils_settings_last(Path({str(ROOT)!r}) / "
+              "'docutils.conf'); ")
+    env = {k: v for k, v in os.environ.items() if k != "DOCUTILSCONFIG"}
+    shown = [subprocess.run([sys.executable, "-c", code], input=rst, capture_output=True,
+                            text=True, cwd=tmp_path, check=True, env=env).stdout
+             for code in (render, pinned + render)]
+    assert "TOP-SECRET" in shown[0] and "<b id=raw" in shown[0]    # the caller's file alone
+    assert "TOP-SECRET" not in shown[1] and "<b id=raw" not in shown[1]
+    assert '&quot;include&quot; directive disabled' in shown[1]
+
+
 def test_markdown_tables_show_their_cells_as_text(secret, tmp_path):
     texts = payloads(secret)
     write_table([{"what": t, "n": 1.0} for t in texts], tmp_path / "t.csv", tmp_path / "t.md",

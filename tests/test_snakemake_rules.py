@@ -42,3 +42,14 @@ def test_the_workflow_modifier_still_names_a_modules_rules():
     method = getattr(WorkflowModifier, "modify_rulename", None)
     assert callable(method), "snakemake.modules.WorkflowModifier.modify_rulename is gone"
     assert tuple(inspect.signature(method).parameters) == ("self", "rulename")
+
+
+def test_the_workflow_still_keeps_the_calling_snakefiles_config_first():
+    """rotorvib.pipeline.snakemake_rules.caller_config reads the config of the first modifier,
+    the calling Snakefile's (a module's own config is in the modifiers after it)."""
+    import snakemake.api  # noqa: F401  (imported first: snakemake.workflow alone is circular)
+    from snakemake.modules import WorkflowModifier
+    from snakemake.workflow import Workflow
+
+    assert "self.modifier_stack = [" in inspect.getsource(Workflow)
+    assert 'self.globals["config"] = config' in inspect.getsource(WorkflowModifier.__init__)

@@ -85,6 +85,22 @@ def in_domain(name: str, values: np.ndarray, holds: np.ndarray, allowed: str) ->
     return values
 
 
+#: Entries of an array argument at most (a frequency grid, the times of a response): a million
+#: complex matrices of a few sets, or 10 million states of eight doubles, stay below 1 GB.
+MAX_ENTRIES = 10_000_000
+
+
+def nonnegative_array(name: str, value, what: str) -> np.ndarray:
+    """``value`` as a float array of at most :data:`MAX_ENTRIES` entries, each finite, >= 0
+    and 0 or within :data:`MAGNITUDES` (``what`` names the quantity); ``ValueError`` naming
+    ``name`` otherwise (a negative frequency or time has no meaning here, and 1e300 squared is
+    no longer a number)."""
+    a = finite_array(name, value)
+    if a.size > MAX_ENTRIES:
+        raise ValueError(f"{name}: {a.size} entries; at most {MAX_ENTRIES}")
+    return in_domain(name, a, a >= 0, f"{what} >= 0")
+
+
 def integer(name: str, value, minimum: int, maximum: int | None = None) -> int:
     """``value`` as an ``int``; ``ValueError`` unless it is an integer (not a float or bool)
     ``>= minimum`` (and ``<= maximum``, when given)."""

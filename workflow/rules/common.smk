@@ -8,21 +8,22 @@ from types import SimpleNamespace
 
 from snakemake.exceptions import WorkflowError
 
-from rotorvib.pipeline.config import (
-    ConfigError,
-    check_config,
-    load_yaml,
+from rotorvib.pipeline.config import ConfigError, check_config, load_yaml
+from rotorvib.pipeline.config_sources import (
+    command_line_overrides,
     merge,
+    module_config,
     workflow_config,
 )
-from rotorvib.pipeline.strict_yaml import check_value
 from rotorvib.pipeline.job import INPUT_PRODUCERS_PARAM, job_config
 from rotorvib.io.provenance import config_hash
 from rotorvib.pipeline.fingerprint import code_fingerprint
 from rotorvib.pipeline.report import categories, entry_label, names_in, subcategory
+from rotorvib.pipeline.report_pages import read_docutils_settings_last
 from rotorvib.pipeline.slurm_profile import batch_rules
 from rotorvib.pipeline.snakemake_rules import (
     add_params,
+    caller_config,
     module_config_given,
     producer,
     rule_name,
@@ -35,6 +36,10 @@ from rotorvib.pipeline.snakemake_rules import (
 # (`--directory`) or as a module of another workflow.
 WORKFLOW_ROOT = Path(str(workflow.current_basedir)).resolve().parents[1]
 
+# Snakemake's rendering of the report's words reads the workflow's docutils.conf (no include,
+# no raw HTML) wherever it runs, a caller's folder included (rotorvib.pipeline.report_pages).
+read_docutils_settings_last(WORKFLOW_ROOT / "docutils.conf")
+
 
 def source(relative):
     """A file of the workflow's own folder: as ``relative`` when Snakemake runs in that folder
@@ -44,25 +49,34 @@ def source(relative):
     return str(WORKFLOW_ROOT / relative)
 
 
+def _strict_reading():
+    """The configuration as this package reads it (rotorvib.pipeline.strict_yaml: YAML 1.2,
+    strict), replacing Snakemake's reading (YAML 1.1, a duplicate key's last value kept), from
+    the same files in the same order: the Snakefile's `configfile:`, each --configfile, then
+    the --config entries read from their text (`config_args`, Snakemake's settings field that
+    holds the entries as typed, and that it hands to every job it spawns), not from its parsed
+    values, in which a duplicate key is already gone."""
+    settings = workflow.config_settings
+    given = [Path(f).resolve() for f in settings.configfiles]
+    return workflow_config(
+        [f for f in workflow.configfiles if Path(f).resolve() not in given],
+        settings.configfiles,
+        command_line_overrides(settings.config_args or ()),
+        replace_base=settings.replace_workflow_config,
+    )
+
+
 try:
     if module_config_given(workflow):
-        # A module of another workflow given its own `config:`: that configuration over the
-        # shipped defaults (config/config.yaml), its shape checked before it is used.
-        check_value(config, "the module's config")
-        _read = merge(load_yaml(WORKFLOW_ROOT / "config/config.yaml"), config)
-    else:
-        # The configuration as this package reads it (rotorvib.pipeline.strict_yaml: YAML 1.2,
-        # strict), replacing Snakemake's reading (YAML 1.1, a duplicate key's last value kept),
-        # from the same files in the same order: the Snakefile's `configfile:`, each
-        # --configfile, --config.
-        _settings = workflow.config_settings
-        _given = [Path(f).resolve() for f in _settings.configfiles]
-        _read = workflow_config(
-            [f for f in workflow.configfiles if Path(f).resolve() not in _given],
-            _settings.configfiles,
-            dict(_settings.config),
-            replace_base=_settings.replace_workflow_config,
+        # A module of another workflow given its own `config:`: that configuration, read again
+        # from the caller's files where it came from them, over the shipped defaults
+        # (config/config.yaml).
+        _read = merge(
+            load_yaml(WORKFLOW_ROOT / "config/config.yaml"),
+            module_config(config, caller_config(workflow), _strict_reading),
         )
+    else:
+        _read = _strict_reading()
     config.clear()
     config.update(check_config(_read, load_yaml(WORKFLOW_ROOT / "config/schema.yaml")))
 except ConfigError as error:

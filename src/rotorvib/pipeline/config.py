@@ -1,12 +1,15 @@
 """Loading, validating and fingerprinting the pipeline configuration.
 
-Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.pipeline.strict_yaml`): a duplicate key,
-a syntax error or a scalar that YAML 1.1 reads otherwise is reported with its file, line and
-column, and ``1e-9`` is a number rather than a string.  The configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
-computation: every number must be finite, an integer must be written as one, and the schema's
-extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``, ``x-at-least``, a
-cap on the points of a grid).  Defaults given in the schema are filled in, and every
-violation is reported with the dotted key it concerns and what is allowed, e.g.::
+Files are read by a strict YAML 1.2 loader (:mod:`rotorvib.pipeline.strict_yaml`): a duplicate
+key, a syntax error or a scalar that YAML 1.1 reads otherwise is reported with its file, line
+and column, and ``1e-9`` is a number rather than a string (at every door, the ``--config`` text
+and a module's ``config:`` included: :mod:`rotorvib.pipeline.config_sources`).  The
+configuration is then checked against a JSON Schema (``config/schema.yaml``) before any
+computation: every number must be finite and 0 or within the library's magnitudes, every text
+free of control, format and separator characters, an integer must be written as one, and the
+schema's extensions add cross-field rules (``x-ordered``, ``x-at-most``, ``x-below``,
+``x-at-least``, a cap on the points of a grid).  Defaults given in the schema are filled in,
+and every violation is reported with the dotted key it concerns and what is allowed, e.g.::
 
     config key 'paper_c.rotor.M': -1.0 is not allowed; must be a number > 0 (disk mass, kg)
 
@@ -19,69 +22,18 @@ from __future__ import annotations
 
 import copy
 import math
-import re
 import unicodedata
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import yaml
-
-from rotorvib.checks import SMALLEST_NORMAL
+from rotorvib.checks import MAGNITUDES
 from rotorvib.pipeline.config_checks import problems
-from rotorvib.pipeline.strict_yaml import (ConfigError, DuplicateKey, check_shape, check_value,
-                                       load_value, load_yaml)
+from rotorvib.pipeline.config_sources import command_line_overrides, merge
+from rotorvib.pipeline.strict_yaml import ConfigError, load_yaml
 
 if TYPE_CHECKING:
     import jsonschema
-
-
-def typed_overrides(overrides: dict) -> dict:
-    """``--config`` overrides with the values inside nested keys read as YAML.
-
-    Snakemake reads ``--config paper_c='{den_hartog: {d: 0.09}}'`` with YAML's base loader,
-    which leaves every nested value a string ("0.09"); each such string is read again here as
-    a value of a configuration file would be (:func:`rotorvib.pipeline.strict_yaml.load_value`:
-    ``0.09`` and ``1e-9`` are numbers, ``printed`` stays a string, ``0777`` is refused naming
-    its key). Top-level values, which Snakemake already types, are kept. The overrides' shape
-    is checked first (:func:`rotorvib.pipeline.strict_yaml.check_value`: Snakemake keeps an
-    alias as one shared object, which is typed once). Only ``--config`` values come here: a
-    configuration file is read once, by :func:`load_yaml`."""
-    check_value(overrides, "--config")
-    typed_once: dict[int, Any] = {}
-
-    def typed(value, path):
-        if id(value) in typed_once:
-            return typed_once[id(value)]
-        if isinstance(value, dict):
-            result = {key: typed(item, path + (key,)) for key, item in value.items()}
-        elif isinstance(value, list):
-            result = [typed(item, path + (str(i),)) for i, item in enumerate(value)]
-        elif isinstance(value, str):
-            try:
-                result = load_value(value, f"--config {_key(path)}")
-            except yaml.YAMLError:
-                result = value
-        else:
-            result = value
-        if isinstance(value, (dict, list)):
-            typed_once[id(value)] = result
-        return result
-
-    return {key: typed(value, (key,)) if isinstance(value, (dict, list)) else value
-            for key, value in overrides.items()}
-
-
-def workflow_config(base_files, files, overrides: dict, *, replace_base: bool = False) -> dict:
-    """The configuration of a ``snakemake`` command, read here rather than taken from
-    Snakemake's own reading (YAML 1.1, templates evaluated): the workflow's ``configfile``
-    ``base_files`` (unless ``replace_base``, Snakemake's ``--replace-workflow-config``), then
-    each ``--configfile`` of ``files`` in order, then the ``--config`` ``overrides``, merged
-    key by key as Snakemake merges them."""
-    config: dict = {}
-    for path in ([] if replace_base else list(base_files)) + list(files):
-        config = merge(config, load_yaml(path))
-    return merge(config, typed_overrides(overrides))
 
 
 def _fill_defaults(instance: Any, schema: dict) -> None:
@@ -106,6 +58,8 @@ def _allowed(schema: dict) -> str:
             f"{n_min}" if n_min is not None and n_min == n_max else f"{n_min or 0}..{n_max or 'n'}"
         )
         parts.append(f"a list of {size} items, each {_allowed(items)}")
+    elif kind is None and ("pattern" in schema or "maxLength" in schema):
+        parts.append("a string")
     elif kind is not None:
         parts.append({"number": "a number", "integer": "an integer", "string": "a string",
                       "boolean": "true or false", "object": "a mapping"}.get(kind, str(kind)))
@@ -118,6 +72,12 @@ def _allowed(schema: dict) -> str:
         parts.append(" and ".join(bounds))
     if "enum" in schema:
         parts.append("one of " + ", ".join(map(repr, schema["enum"])))
+    if "maxLength" in schema:
+        parts.append(f"of {schema.get('minLength', 0)} to {schema['maxLength']} characters")
+    elif "minLength" in schema:
+        parts.append(f"of at least {schema['minLength']} characters")
+    if "pattern" in schema:
+        parts.append(f"matching the pattern {schema['pattern']}")
     text = " ".join(parts) if parts else "any value"
     if "description" in schema:
         text += f" ({schema['description']})"
@@ -143,8 +103,19 @@ def _describe(error: jsonschema.ValidationError) -> str:
         extra = sorted(set(error.instance) - set(error.schema.get("properties", {})))
         return (f"config key '{_key(path)}' has unknown key(s) {', '.join(map(repr, extra))}; "
                 f"allowed keys: {allowed}")
-    return (f"config key '{_key(path)}': {error.instance!r} is not allowed; "
+    if "propertyNames" in error.absolute_schema_path:    # a name of a mapping's entry
+        return (f"config key '{_key(path)}': the name {_shown(error.instance)} is not allowed; "
+                f"must be {_allowed(error.schema)}")
+    return (f"config key '{_key(path)}': {_shown(error.instance)} is not allowed; "
             f"must be {_allowed(error.schema)}")
+
+
+def _shown(value) -> str:
+    """``repr(value)``, a long text cut to its first 40 characters and its length, so that a
+    message stays one readable line (a 1 MB text is shown by what it starts with)."""
+    if isinstance(value, str) and len(value) > 60:
+        return f"{value[:40]!r}... ({len(value)} characters)"
+    return repr(value)
 
 
 def _is_number(text: str) -> bool:
@@ -156,31 +127,47 @@ def _is_number(text: str) -> bool:
 
 
 def _non_finite(config, path=()) -> list[str]:
-    """Every NaN, infinite or subnormal number in the configuration (JSON Schema bounds never
-    reject NaN, and a subnormal passes any bound "> 0")."""
+    """Every number of the configuration that the library would refuse (JSON Schema bounds never
+    reject NaN, and a subnormal passes any bound "> 0"): NaN, an infinity, or a number that is
+    neither 0 nor within the library's magnitudes (:data:`rotorvib.checks.MAGNITUDES`, the bound
+    every entry point applies to its arguments). Refused here, such a number is named by its
+    key before any job; accepted, it failed inside a job naming a library field or a derived
+    quantity (1e308 as a disk mass, 1e-300 as a stiffness: a hostile-input audit)."""
     if isinstance(config, dict):
         return [p for k, v in config.items() for p in _non_finite(v, path + (k,))]
     if isinstance(config, list):
         return [p for i, v in enumerate(config) for p in _non_finite(v, path + (str(i),))]
     if isinstance(config, float) and not math.isfinite(config):
         return [f"config key '{_key(path)}': {config!r} is not allowed; must be a finite number"]
-    if isinstance(config, float) and 0 < abs(config) < SMALLEST_NORMAL:
-        return [f"config key '{_key(path)}': {config!r} is not allowed; must be 0 or at least "
-                f"{SMALLEST_NORMAL:.4g} in magnitude (a subnormal number has lost precision)"]
+    if (isinstance(config, (int, float)) and not isinstance(config, bool) and config != 0
+            and not MAGNITUDES[0] <= abs(config) <= MAGNITUDES[1]):
+        shown = f"{config:.6g}" if isinstance(config, int) else repr(config)
+        return [(f"config key '{_key(path)}': {shown} is not allowed; must be 0 or between "
+                 f"{MAGNITUDES[0]:g} and {MAGNITUDES[1]:g} in magnitude (beyond, products "
+                 "underflow or overflow; a subnormal number has lost precision already)")]
     return []
 
 
+#: Unicode categories refused in a key or a text: control characters (a newline among them),
+#: format characters (the bidirectional overrides and isolates U+202A-U+202E and U+2066-U+2069,
+#: which reorder what a reader sees, and zero-width characters), line and paragraph separators
+#: (U+2028, U+2029: a line break to many readers of a CSV or a log), surrogates.
+_HIDDEN = frozenset({"Cc", "Cf", "Zl", "Zp", "Cs"})
+
+
 def _bad_text(config, path=()) -> list[str]:
-    """Every key or string holding a control character (a newline among them) or starting or
-    ending with whitespace: a name or a text shown in the report, a table or a path must read
-    as written (found by a hostile-input audit: a study name ending in a newline was taken)."""
+    """Every key or string holding a character of :data:`_HIDDEN` or starting or ending with
+    whitespace: a name or a text shown in the report, a table or a path must read as written
+    (found by hostile-input audits: a study name ending in a newline was taken, and so were
+    U+2028 and U+202E)."""
 
     def bad(text: str) -> bool:
-        return text != text.strip() or any(unicodedata.category(ch) == "Cc" for ch in text)
+        return text != text.strip() or any(unicodedata.category(ch) in _HIDDEN for ch in text)
 
     def problem(key, text, what):
-        return (f"config key '{_key(key)}': {what} {text!r} is not allowed; must be printable "
-                "text without control characters or surrounding whitespace")
+        return (f"config key '{_key(key)}': {what} {_shown(text)} is not allowed; must be "
+                "printable text without control characters (format, bidirectional override "
+                "and line separator ones among them) or surrounding whitespace")
 
     found = []
     if isinstance(config, dict):
@@ -283,24 +270,15 @@ def validate_config(config: dict, schema: dict) -> dict:
     _fill_defaults(filled, schema)
     errors = sorted(_validator_class()(schema).iter_errors(filled),
                     key=lambda e: list(map(str, e.absolute_path)))
-    messages = _non_finite(filled) + _bad_text(filled) + [_describe(e) for e in errors]
+    # a value that breaks two rules described alike (a name too long for both its pattern and
+    # its maxLength) is reported once
+    messages = list(dict.fromkeys(_non_finite(filled) + _bad_text(filled)
+                                  + [_describe(e) for e in errors]))
     if not messages:
         messages = _check_extensions(filled, schema, {**schema, "__config__": filled})
     if messages:
         raise ConfigError("invalid configuration:\n  " + "\n  ".join(messages))
     return filled
-
-
-def merge(base: dict, override: dict) -> dict:
-    """``base`` updated by ``override`` key by key at every depth (as Snakemake merges
-    ``--configfile`` files)."""
-    merged = copy.deepcopy(base)
-    for key, value in override.items():
-        if isinstance(value, dict) and isinstance(merged.get(key), dict):
-            merged[key] = merge(merged[key], value)
-        else:
-            merged[key] = copy.deepcopy(value)
-    return merged
 
 
 def check_config(config: dict, schema: dict) -> dict:
@@ -311,50 +289,6 @@ def check_config(config: dict, schema: dict) -> dict:
     if found := problems(checked):
         raise ConfigError("invalid configuration:\n  " + "\n  ".join(found))
     return checked
-
-
-#: A ``--config`` key as Snakemake accepts it (snakemake.cli.parse_config).
-_TOP_KEY = re.compile(r"[a-zA-Z_][\w-]*\w$")
-
-
-def command_line_overrides(entries) -> dict:
-    """``--config KEY=VALUE ...`` entries as Snakemake reads them (an integer, a number,
-    ``true``/``false``, else YAML read as text, else the text), each value's shape checked
-    first; :class:`ConfigError` naming the entry for what Snakemake would stop on with a
-    traceback: an entry without ``=`` (a target written after ``--config`` is taken for one)
-    and a key that is not a top-level name (``paper_b.shards=2``)."""
-    overrides: dict = {}
-    for entry in entries:
-        key, sep, text = entry.partition("=")
-        if not sep:
-            raise ConfigError(f"--config {entry!r}: not KEY=VALUE; a target written after "
-                              "--config is read as one of its entries: put targets first")
-        if not _TOP_KEY.match(key):
-            raise ConfigError(f"--config {entry!r}: {key!r} is not a top-level key; write a "
-                              "nested key as YAML, e.g. paper_b='{shards: 2}'")
-        overrides[key] = _snakemake_value(text, f"--config {key}")
-    return typed_overrides(overrides)
-
-
-def _snakemake_value(text: str, name: str):
-    """One ``--config`` value read as Snakemake reads it, its YAML shape checked first."""
-    for parse in (int, float):
-        try:
-            return parse(text)
-        except ValueError:
-            pass
-    if text in ("true", "false", "True", "False"):
-        return text.lower() == "true"
-    check_shape(text, name)
-    try:
-        load_value(text, name)            # a key given twice, which Snakemake would drop
-    except (yaml.YAMLError, ConfigError) as error:
-        if isinstance(error, DuplicateKey):
-            raise
-    try:
-        return yaml.load(text, Loader=yaml.BaseLoader)
-    except yaml.YAMLError:
-        return text
 
 
 def check_files(paths, schema_path: str | Path = "config/schema.yaml", overrides=()) -> dict:

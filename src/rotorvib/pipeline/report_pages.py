@@ -4,7 +4,11 @@ by docutils with its own stylesheet embedded, and the captions inside the table 
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
+
 from docutils.core import publish_parts, publish_string
+from docutils.frontend import OptionParser
 
 #: docutils settings of every page written here: any warning raises, and no directive may
 #: include a file or pass raw HTML through (the texts are escaped, rotorvib.pipeline.report.rst_text;
@@ -22,3 +26,18 @@ def rst_to_html(text: str) -> str:
 def rst_fragment(text: str) -> str:
     """``text`` (reStructuredText) as an HTML fragment (a caption inside a page)."""
     return publish_parts(text, writer_name="html5", settings_overrides=_SETTINGS)["body"]
+
+
+def read_docutils_settings_last(config_file: Path) -> None:
+    """Make ``config_file`` the last settings file of every docutils call in this process
+    (``DOCUTILSCONFIG``: the files docutils reads, each later one overriding), so that its
+    settings win over any ``docutils.conf`` in the working directory.
+
+    Snakemake renders the report's landing page and captions with docutils and passes no
+    settings, so docutils takes them from its files, ``./docutils.conf`` among them: run as
+    another workflow's module, the working directory is the caller's folder, and the project's
+    ``docutils.conf`` (no ``include``, no ``raw``) was not read there. The calls written here
+    pass their settings themselves (:data:`_SETTINGS`, no file read)."""
+    files = os.environ.get("DOCUTILSCONFIG", os.pathsep.join(OptionParser.standard_config_files))
+    kept = [f for f in files.split(os.pathsep) if f.strip() and f != str(config_file)]
+    os.environ["DOCUTILSCONFIG"] = os.pathsep.join([*kept, str(config_file)])

@@ -5,10 +5,11 @@ Snakefile can reach through ``workflow.rules``.  The workflow needs four things 
 public API gives: a rule's script path, to give the rule its code fingerprint as a parameter
 (``Rule.set_params``), and, for an input dataset, the rule that makes it and its wildcards
 (``Rule.is_producer``, ``Rule.get_wildcards``), to check on read that the dataset was made by
-that rule under this run's configuration.  And two things of the workflow: whether it is read
+that rule under this run's configuration.  And three things of the workflow: whether it is read
 as a module given its own ``config:`` (:func:`module_config_given`), whose configuration is
-then that ``config:`` rather than the command's files, and the name a rule has in a module
-(:func:`rule_name`: the figure jobs are grouped by the batch rules they wait for).  Every such
+then that ``config:`` rather than the command's files, the configuration of the workflow
+that reads it (:func:`caller_config`), where that ``config:`` comes from, and the name a rule
+has in a module (:func:`rule_name`: the figure jobs are grouped by the batch rules they wait for).  Every such
 use is here; ``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so
 an upgrade breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
 objects.
@@ -54,6 +55,13 @@ def module_config_given(workflow) -> bool:
     its own (Snakemake then skips the module's ``configfile:``, ``WorkflowModifier``)."""
     modifier = workflow.modifier
     return bool(modifier.is_module and modifier.skip_configfile)
+
+
+def caller_config(workflow) -> dict:
+    """The configuration of the workflow that reads this one as a module, as Snakemake read it
+    (the globals of its first ``WorkflowModifier``, the calling Snakefile's), where the module's
+    ``config:`` is looked for (:func:`rotorvib.pipeline.config_sources.module_config`)."""
+    return workflow.modifier_stack[0].globals["config"]
 
 
 def wildcards(rule, path: str) -> dict:

@@ -119,14 +119,24 @@ def check_value(value: Any, name: str) -> None:
     """The limits of :func:`check_shape` on a value already built (Snakemake's reading of a
     ``--config`` override, or a module's ``config:``): at most :data:`MAX_DEPTH` deep, no
     value inside itself, at most :data:`MAX_NODES` values with every repeated object counted
-    each time it appears (an alias bomb is measured, not expanded); :class:`ConfigError`
-    naming ``name`` otherwise."""
+    each time it appears (an alias bomb is measured, not expanded); and what a strict file
+    cannot hold, where YAML 1.1 (Snakemake's reading) shows through: a key that is not text
+    (``on:``, ``yes:`` and ``1:`` make a bool or an int key) and a value that is not text, a
+    number, true/false, null, a list or a mapping (``2024-01-01`` makes a date);
+    :class:`ConfigError` naming ``name`` otherwise."""
     sizes: dict[int, int] = {}
     inside: set[int] = set()
 
     def size(item, depth: int) -> int:
         if not isinstance(item, (dict, list)):
+            if item is not None and not isinstance(item, (str, int, float)):
+                raise ConfigError(f"{name}: {item!r} is a {type(item).__name__}, which no "
+                                  "configuration file here holds (YAML 1.1 reads a date as "
+                                  "one); quote it for text")
             return 1
+        if isinstance(item, dict) and (keys := [k for k in item if not isinstance(k, str)]):
+            raise ConfigError(f"{name}: key {keys[0]!r} is a {type(keys[0]).__name__}, not "
+                              "text (YAML 1.1 reads on/off/yes/no as true/false); quote it")
         if id(item) in inside:
             raise ConfigError(f"{name}: a value inside itself")
         if id(item) not in sizes:

@@ -14,16 +14,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorvib.checks import finite_array, integer
+from rotorvib.checks import finite_array, integer, nonnegative_array
 from rotorvib.models.absorber.linear import matrices
 from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
 
 
 def dynamic_stiffness(rotor: Rotor, sets, omega, spin: float = 0.0) -> np.ndarray:
     """``A(w) = -M w^2 + i w C + K`` (eq. 18), shape ``omega.shape + (n, n)``; ``spin`` as in
-    :func:`~rotorvib.models.absorber.linear.matrices`."""
+    :func:`~rotorvib.models.absorber.linear.matrices`; ``omega`` (rad/s) finite and >= 0
+    (:func:`rotorvib.checks.nonnegative_array`)."""
     M, C, K = matrices(rotor, sets, spin)
-    w = finite_array("omega", omega)[..., None, None]
+    w = nonnegative_array("omega", omega, "a frequency (rad/s)")[..., None, None]
     return -M * w**2 + 1j * w * C + K
 
 
@@ -48,7 +49,7 @@ def theta_eq20(rotor: Rotor, x, omega, *, printed_determinant: bool = False) -> 
         raise ValueError(f"x: shape {x.shape}, expected (..., {len(DUAL_NAMES)}) in the order "
                          f"{DUAL_NAMES}")
     m1, m2, k1, k2, c1, c2, d1, d2 = np.moveaxis(x, -1, 0)
-    w2 = finite_array("omega", omega) ** 2
+    w2 = nonnegative_array("omega", omega, "a frequency (rad/s)") ** 2
     w = np.sqrt(w2)
     a11 = -(rotor.J + 2 * m1 * d1**2 + 2 * m2 * d2**2) * w2 + rotor.k_t
     a12, a13 = -2 * m1 * d1 * w2, -2 * m2 * d2 * w2
@@ -67,15 +68,17 @@ def dimensionless_amplitude(rotor: Rotor, theta) -> np.ndarray:
 
 def amplitude(rotor: Rotor, sets, w, spin: float = 0.0) -> np.ndarray:
     """``D(w)`` of the rotor with ``sets`` at frequency ratios ``w = omega / omega_n``;
-    ``spin`` as in :func:`~rotorvib.models.absorber.linear.matrices`."""
-    omega = np.asarray(w) * rotor.omega_n
+    ``spin`` as in :func:`~rotorvib.models.absorber.linear.matrices`; ``w`` finite and >= 0."""
+    omega = nonnegative_array("w", w, "a frequency ratio") * rotor.omega_n
     return dimensionless_amplitude(rotor, steady_state(rotor, sets, omega, spin)[..., 0])
 
 
 def bare_rotor_amplitude(w) -> np.ndarray:
-    """``D = 1/|1 - w^2|`` of the rotor without absorber (infinite at ``w = 1``)."""
+    """``D = 1/|1 - w^2|`` of the rotor without absorber (infinite at ``w = 1``, the one
+    infinity it returns); ``w`` finite and >= 0."""
+    w = nonnegative_array("w", w, "a frequency ratio")
     with np.errstate(divide="ignore"):
-        return 1.0 / np.abs(1.0 - np.asarray(w, dtype=float) ** 2)
+        return 1.0 / np.abs(1.0 - w**2)
 
 
 def natural_frequencies(rotor: Rotor, sets) -> np.ndarray:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorvib.checks import number
 from rotorvib.models.absorber.parameters import Rotor
 
 
@@ -16,8 +17,10 @@ def matrices(rotor: Rotor, sets, spin: float = 0.0) -> tuple[np.ndarray, np.ndar
     (divided by 2, so M is not symmetric).  ``spin`` is the rotor's mean speed Omega (rad/s),
     which the paper's kinetic energy leaves out: with it the term ``-m u (Omega + theta')^2`` of
     eq. (9), linearised, softens each set's stiffness to ``2 k - m Omega^2`` (beyond the paper;
-    0 gives eq. 14 as printed).
+    0 gives eq. 14 as printed; a finite number >= 0 within
+    :data:`rotorvib.checks.MAGNITUDES`, its square entering the stiffness).
     """
+    spin = number("spin", spin, inclusive=True, what=" (rotor speed, rad/s)")
     n = 1 + len(sets)
     M, C, K = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
     M[0, 0] = rotor.J + sum(2 * s.m * s.d**2 for s in sets)

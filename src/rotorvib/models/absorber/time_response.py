@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorvib.checks import integer, number
+from rotorvib.checks import integer, nonnegative_array, number
 from rotorvib.methods.integrate import integrate
 from rotorvib.models.absorber.linear import matrices
 from rotorvib.models.absorber.parameters import Rotor
@@ -57,8 +57,16 @@ def simulate(rotor: Rotor, sets, omega: float, t, *, model: str = "nonlinear",
              rtol: float = 1e-10, atol: float = 1e-13) -> np.ndarray:
     """Response from rest at times ``t``; returns ``q(t)``, shape ``(len(t), 1 + n_sets)``
     (``theta`` in rad, then each set's displacement in m).  ``model`` is ``"nonlinear"``
-    (eqs 8-10) or ``"linear"`` (eq. 14)."""
-    number("omega", omega, what=" (forcing frequency, rad/s)")
+    (eqs 8-10) or ``"linear"`` (eq. 14).  ``t`` (s) increasing from a time >= 0, spanning at
+    most :data:`MAX_PERIODS` periods of the forcing and of the bare rotor (the integrator's
+    work grows with them: a span of 1e300 s would never end)."""
+    omega = number("omega", omega, what=" (forcing frequency, rad/s)")
+    t = _times(t)
+    periods = (t[-1] - t[0]) * max(omega, rotor.omega_n) / (2 * np.pi)
+    if periods > MAX_PERIODS:
+        raise ValueError(f"t: spans {t[-1] - t[0]:.6g} s, {periods:.3g} periods of "
+                         f"max(omega, omega_n) = {max(omega, rotor.omega_n):.6g} rad/s; at most "
+                         f"{MAX_PERIODS:.0e}")
     n = 1 + len(sets)
     y0 = np.zeros(2 * n)
     if model == "nonlinear":
@@ -78,6 +86,7 @@ def linear_response(rotor: Rotor, sets, omega: float, t) -> np.ndarray:
     ``(len(t), 1 + n_sets)`` like :func:`simulate`; needs a damped design (``i w`` not an
     eigenvalue of ``A``)."""
     number("omega", omega, what=" (forcing frequency, rad/s)")
+    t = _times(t)
     M, C, K = matrices(rotor, sets)
     n = len(M)
     minv = np.linalg.inv(M)
@@ -86,13 +95,26 @@ def linear_response(rotor: Rotor, sets, omega: float, t) -> np.ndarray:
     forced = np.linalg.solve(1j * omega * np.eye(2 * n) - A, b)
     lam, V = np.linalg.eig(A)
     free = np.linalg.solve(V, -forced.real.astype(complex))
-    t = np.asarray(t, dtype=float)[:, None]
+    t = t[:, None]
     y = np.real(forced * np.exp(1j * omega * t)) + np.real((V @ (free * np.exp(lam * t)).T).T)
     return y[:, :n]
 
 
 #: Samples of one response at most (8 bytes each per state variable).
 MAX_SAMPLES = 10_000_000
+#: Periods of the forcing or of the bare rotor that one integrated response may span at most
+#: (paper C's responses span a few hundred).
+MAX_PERIODS = 1_000_000
+
+
+def _times(t) -> np.ndarray:
+    """``t`` as the times of a response: one dimension, at most :data:`MAX_SAMPLES`, each
+    finite and >= 0 (:func:`rotorvib.checks.nonnegative_array`), increasing; ``ValueError``
+    naming ``t`` otherwise."""
+    t = nonnegative_array("t", t, "a time (s)")
+    if t.ndim != 1 or not 1 <= len(t) <= MAX_SAMPLES or np.any(np.diff(t) <= 0):
+        raise ValueError(f"t: shape {t.shape}; must be 1 to {MAX_SAMPLES} increasing times")
+    return t
 
 
 def response_times(omega: float, t_end: float, samples_per_period: int) -> np.ndarray:
@@ -110,5 +132,6 @@ def response_times(omega: float, t_end: float, samples_per_period: int) -> np.nd
 
 
 def undamped_resonance_envelope(rotor: Rotor, t):
-    """Exact envelope ``Gamma0 t / (2 J w_n)`` of the bare rotor driven at ``w_n`` from rest."""
-    return rotor.Gamma0 * np.asarray(t) / (2 * rotor.J * rotor.omega_n)
+    """Exact envelope ``Gamma0 t / (2 J w_n)`` of the bare rotor driven at ``w_n`` from rest;
+    ``t`` (s) finite and >= 0."""
+    return rotor.Gamma0 * nonnegative_array("t", t, "a time (s)") / (2 * rotor.J * rotor.omega_n)

@@ -22,6 +22,7 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
+from rotorvib.checks import nonnegative_array
 from rotorvib.comparison import Margin, Reproduced
 from rotorvib.io.progress import Progress
 from rotorvib.io.variables import described
@@ -45,8 +46,11 @@ DESIGNS = {"table2": "Table 2 (paper)",
 
 
 def added_mass(x) -> np.ndarray:
-    """Added mass ``2 (m1 + m2)`` (kg) of dual-absorber design vectors ``x[..., 8]``."""
-    x = np.asarray(x, float)
+    """Added mass ``2 (m1 + m2)`` (kg) of dual-absorber design vectors ``x[..., 8]``, each
+    entry finite and >= 0."""
+    x = nonnegative_array("x", x, "a design value")
+    if x.shape[-1:] != (8,):
+        raise ValueError(f"x: shape {x.shape}, expected (..., 8): m1, m2, k1, k2, c1, c2, d1, d2")
     return 2 * (x[..., 0] + x[..., 1])
 
 

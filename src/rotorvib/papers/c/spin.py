@@ -23,6 +23,7 @@ from dataclasses import replace
 import numpy as np
 import xarray as xr
 
+from rotorvib.checks import integer, nonnegative_array, number
 from rotorvib.choices import VARIANT_JOIN, Close
 
 from rotorvib.comparison import Margin, Reproduced
@@ -36,20 +37,27 @@ REFERENCE = ("Paper C: dual dynamic vibration absorber for the torsional vibrati
 
 def tuned_frequency(omega_a, spin):
     """``sqrt(omega_a^2 - Omega^2)`` (rad/s), the natural frequency of a set on a locked disk
-    spinning at ``spin``; NaN where the spring is lost (``Omega >= omega_a``)."""
-    squared = np.asarray(omega_a, float) ** 2 - np.asarray(spin, float) ** 2
+    spinning at ``spin``; NaN where the spring is lost (``Omega >= omega_a``), the one NaN it
+    returns: ``omega_a`` and ``spin`` finite and >= 0 (rad/s)."""
+    omega_a = nonnegative_array("omega_a", omega_a, "a frequency (rad/s)")
+    squared = omega_a**2 - nonnegative_array("spin", spin, "a rotor speed (rad/s)") ** 2
     return np.sqrt(np.where(squared > 0, squared, np.nan))
 
 
 def detuning_limit(close: float) -> float:
     """The spin, as a fraction of a set's ``omega_a``, above which its tuning
     ``sqrt(omega_a^2 - Omega^2)`` is more than ``close`` (relative) below ``omega_a``:
-    ``sqrt(1 - (1 - close)^2)``."""
+    ``sqrt(1 - (1 - close)^2)``; ``close`` a fraction in (0, 1]."""
+    close = number("close", close, what=" (a relative tolerance)")
+    if close > 1:
+        raise ValueError(f"close = {close!r}: must be a fraction <= 1 (a relative tolerance)")
     return float(np.sqrt(1.0 - (1.0 - close) ** 2))
 
 
 def retuned(sets, spin: float):
-    """The sets with springs ``k + m Omega^2 / 2``: tuned at ``spin`` as they were at rest."""
+    """The sets with springs ``k + m Omega^2 / 2``: tuned at ``spin`` as they were at rest;
+    ``spin`` finite and >= 0 (rad/s)."""
+    spin = number("spin", spin, inclusive=True, what=" (rotor speed, rad/s)")
     return tuple(replace(s, k=s.k + s.m * spin**2 / 2) for s in sets)
 
 
@@ -60,7 +68,9 @@ def spin_dataset(rotor: Rotor, table2, *, n: int, realistic: float, w,
     rotor's resonance (w = 1), as built and tuned at each spin (:func:`retuned`); the
     frequency response over ``w`` at rest and at the ``realistic`` spin (rad/s); and the
     machine speeds the claim is evaluated at, ``realistic`` and the ``alternatives`` (rad/s,
-    each below the spring loss)."""
+    each below the spring loss). ``n`` is 2 to 100 000 (the configuration's bound: each spin
+    is two frequency responses)."""
+    n = integer("n", n, 2, 100_000)
     loss = min(s.omega_a for s in table2)
     spins = np.linspace(0.0, 0.99 * loss, n)
     machines = np.array([realistic, *alternatives], float)
