@@ -13,7 +13,8 @@ import pytest
 import yaml
 
 from ro_crate import validate_crate
-from rotorvib.pipeline.archive import METADATA_DIR, digest_file, restore_archive, verify_archive
+from rotorvib.pipeline.archive import METADATA_DIR, digest_file
+from rotorvib.pipeline.archive_restore import restore_archive, verify_archive
 from workflow_runs import (
     REDUCED,
     REDUCED_SHARDED,
