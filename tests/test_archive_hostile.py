@@ -155,6 +155,18 @@ def test_the_report_texts_are_never_restored(tmp_path, monkeypatch, capsys):
                                 record_path("results/a.nc", 255)}
 
 
+def test_a_link_to_a_report_file_left_out_is_restored(tmp_path):
+    """A results file stored as a link to a file of results/report/ (which the restore leaves
+    out) is still restored, with its bytes."""
+    archive = _crafted(tmp_path / "r.tar.gz", [
+        _file("results/report/pages/a.html", b"<p>a</p>"),
+        _link("results/paper_a/a.html", "results/report/pages/a.html")])
+    root = tmp_path / "clone"
+    root.mkdir()
+    assert restore_archive(archive, sha256_file(archive), root) == ["results/paper_a/a.html"]
+    assert (root / "results/paper_a/a.html").read_bytes() == b"<p>a</p>"
+
+
 def test_the_restore_notes_give_the_steps_the_restore_prints():
     for step in RESTORE_STEPS.split(" && "):
         assert f"\n    {step} " in RESTORE_NOTES

@@ -29,7 +29,8 @@ from pathlib import Path
 MANIFEST = "results/ARCHIVE_MANIFEST.sha256"
 #: Where a file with the bytes of an earlier one (the copies of the figures and table pages
 #: that the report shows, ``results/report/``) is stored once: as a hard link to the first
-#: (in sorted order), which a restore writes as a copy and ``tar -x`` as a link.
+#: (in sorted order), which a restore writes as a copy (outside ``results/report/``, which it
+#: leaves out) and ``tar -x`` as a link.
 LINKED = "results/"
 #: Snakemake's per-output records (params, code and input hashes), kept so that a restored
 #: archive still reruns exactly the jobs a later config or code change affects.
@@ -79,7 +80,8 @@ report's runtime statistics read zero.
 
 {count} files; SHA-256 of each in `ARCHIVE_MANIFEST.sha256`. A file with the bytes of an
 earlier one (the report's copies of the figures and table pages, `results/report/shown/`) is
-stored once, as a hard link to it: the restore writes it as a file, `tar -x` as a link.
+stored once, as a hard link to it, which `tar -x` writes as a link (the restore leaves
+`results/report/` out, and its steps copy it again).
 """
 
 

@@ -30,7 +30,14 @@ import tempfile
 import zlib
 from pathlib import Path
 
-from rotorvib.pipeline.archive import MANIFEST, METADATA_DIR, README, RESTORE_STEPS, record_path
+from rotorvib.pipeline.archive import (
+    LINKED,
+    MANIFEST,
+    METADATA_DIR,
+    README,
+    RESTORE_STEPS,
+    record_path,
+)
 from rotorvib.pipeline.archive_checks import (
     MAX_MANIFEST_BYTES,
     MAX_MEMBERS,
@@ -121,13 +128,14 @@ def _scan(path: str | Path, sha256: str | None, stage: Path | None) -> dict[str,
                     raise ValueError(f"member {member.name!r}: more than {MAX_MEMBERS} members "
                                      f"or {MAX_TOTAL_BYTES} bytes (hard links count their "
                                      "target's)")
-                target = stage / member.name if stage is not None and taken(member.name) \
-                    else None
+                # staged: what a restore takes, and any file a later link may copy
+                staged = taken(member.name) or member.name.startswith(LINKED)
+                target = stage / member.name if stage is not None and staged else None
                 if target is not None and shutil.disk_usage(stage).free < size + SPARE_BYTES:
                     raise ValueError(f"member {member.name!r}: {size} bytes would leave less "
                                      f"than {SPARE_BYTES} bytes free in {stage.parent}")
                 sizes[member.name] = size
-                if member.islnk():      # a copy of an earlier member, staged when taken
+                if member.islnk():      # a copy of an earlier member
                     digests[member.name] = digests[member.linkname]
                     if target is not None:
                         with open(stage / member.linkname, "rb") as copied:
