@@ -180,4 +180,5 @@ def manifest_digests(data: bytes) -> dict[str, str]:
 
 
 def is_digest(text: str) -> bool:
+    """Whether ``text`` is a SHA-256 as ``sha256sum`` writes it: 64 lowercase hex digits."""
     return re.fullmatch(r"[0-9a-f]{64}", text) is not None
