@@ -26,7 +26,7 @@ REBUILT = "results/report/"
 #: link counts its target's), of the manifest, of a job record and of an extended header (a
 #: pax header, a GNU long name or link), and extended headers in a row (a member has at most a
 #: global one, a long name and a long link, or one pax header). The paper configuration's
-#: archive: about 700 members, 60 MB, its longest job record 60 kB.
+#: archive: about 700 members, 60 MB.
 MAX_MEMBERS = 100_000
 MAX_MEMBER_BYTES = 1 << 30
 MAX_TOTAL_BYTES = 16 << 30
