@@ -233,7 +233,7 @@ def test_the_digest_is_checked_before_anything_is_staged(tmp_path, monkeypatch):
     nothing is staged (20 MiB were, before)."""
     archive = _crafted(tmp_path / "r.tar.gz", [_file(f"results/f{i}.bin", os.urandom(1 << 20))
                                                for i in range(20)])
-    monkeypatch.setattr(archive_restore.BoundedTar, "open", None)   # any read of a member fails
+    monkeypatch.setattr(archive_restore, "CheckedTarStream", None)   # any read of a member fails
     root = tmp_path / "clone"
     root.mkdir()
     with pytest.raises(ValueError, match="not the published archive"):

@@ -1,7 +1,8 @@
 """What a results archive may hold (rotorvib.pipeline.archive_restore reads it): the members
-a restore takes (:func:`taken`), the bounds on what it reads, tar headers bounded before
-tarfile reads them (:class:`BoundedTar`), the members (:func:`member_problem`) and job records
-(:func:`record_problem`) accepted, and the manifest's lines (:func:`manifest_digests`)."""
+a restore takes (:func:`taken`), the bounds on what it reads, tar headers checked from the
+tar format itself before tarfile reads them (:class:`CheckedTarStream`), the members
+(:func:`member_problem`) and job records (:func:`record_problem`) accepted, and the manifest's
+lines (:func:`manifest_digests`)."""
 
 from __future__ import annotations
 
@@ -34,8 +35,16 @@ MAX_MANIFEST_BYTES = 32 << 20
 MAX_RECORD_BYTES = 4 << 20
 MAX_HEADER_BYTES = 64 << 10
 MAX_HEADERS_IN_A_ROW = 3
-_EXTENDED = (tarfile.GNUTYPE_LONGNAME, tarfile.GNUTYPE_LONGLINK, tarfile.XHDTYPE,
-             tarfile.XGLTYPE, tarfile.SOLARIS_XHDTYPE)
+#: A tar header's block, and the typeflags :class:`CheckedTarStream` reads: the extended
+#: headers (GNU's long name and long link, pax headers, for one member or global, and Solaris'
+#: pax header), of them pax's, GNU's types and sparse file, and the types no data follows (hard
+#: and symbolic links, devices, folders, fifos).
+_TAR_BLOCK = 512
+_EXTENDED = (b"L", b"K", b"x", b"g", b"X")
+_PAX = (b"x", b"g", b"X")
+_GNU = (b"L", b"K", b"S")
+_SPARSE = b"S"
+_NO_DATA = (b"1", b"2", b"3", b"4", b"5", b"6")
 
 
 def _is_name(value) -> bool:
@@ -113,38 +122,137 @@ def taken(name: str) -> bool:
     return name == CRATE or (name.startswith(RESTORED) and not name.startswith(REBUILT))
 
 
-class _BoundedInfo(tarfile.TarInfo):
-    """A tar header that refuses, before tarfile reads it, an extended header over
-    :data:`MAX_HEADER_BYTES` or more than :data:`MAX_HEADERS_IN_A_ROW` of them in a row
-    (tarfile reads one whole, and a chain by recursion), and any sparse file (whose map tarfile
-    reads unbounded)."""
+class CheckedTarStream:
+    """A decompressed tar stream (``fh``: its ``read``), read through so that each header is
+    checked before any byte of it is passed on: given to ``tarfile.open(fileobj=...,
+    mode="r|")``, it lets tarfile read only headers that passed. Each header is read from the
+    public tar format (a 512-byte block: the typeflag at offset 156, the size at 124, the
+    checksum at 148) and refused, as ``ValueError``, when its checksum is wrong or its size
+    does not parse (:func:`_number`), when it is an extended header (:data:`_EXTENDED`, whose
+    data tarfile reads whole, and a chain of them by recursion) over :data:`MAX_HEADER_BYTES`
+    or more than :data:`MAX_HEADERS_IN_A_ROW` in a row, and when it makes a sparse file (its
+    typeflag, or a pax header's keys: tarfile reads a sparse map unbounded). A pax header's
+    records, bounded so, are read before it is passed on (:func:`_pax_problem`). A member's data
+    passes unchecked, in the reads tarfile asks for, never held whole; after the
+    all-zero block that ends the archive, tarfile reads no header, and the rest passes too.
 
-    def _proc_member(self, tarfile_):
-        if self.type in _EXTENDED:
-            tarfile_.headers_in_a_row += 1
-            if self.size > MAX_HEADER_BYTES:
-                raise ValueError(f"member {self.name!r}: an extended header of {self.size} "
-                                 f"bytes, over the bound of {MAX_HEADER_BYTES}")
-            if tarfile_.headers_in_a_row > MAX_HEADERS_IN_A_ROW:
-                raise ValueError(f"member {self.name!r}: more than {MAX_HEADERS_IN_A_ROW} "
-                                 "extended headers in a row")
-        else:
-            tarfile_.headers_in_a_row = 0
-        if self.type == tarfile.GNUTYPE_SPARSE:
-            self._sparse()
-        return super()._proc_member(tarfile_)
+    The check runs in the same pass as tarfile's read (and the hash of the bytes read,
+    rotorvib.pipeline.archive_restore), one header ahead of it, not as a pass of its own: a file
+    replaced between two passes would have its headers read by tarfile unchecked (the digest
+    of the bytes read is compared only after, and a verify without a published digest compares
+    none), whereas here the bytes checked are the bytes tarfile reads."""
 
-    def _sparse(self, *_):
-        raise ValueError(f"member {self.name!r} is a sparse file")
+    def __init__(self, fh):
+        self.fh, self.offset, self.ready = fh, 0, b""
+        self.data = 0           # bytes of the current member's data (in blocks) still to pass
+        self.in_a_row = 0       # extended headers just passed
+        self.ended = False      # after the archive's end (or a truncated header)
 
-    _proc_gnusparse_00 = _proc_gnusparse_01 = _proc_gnusparse_10 = _sparse
+    def read(self, size=-1) -> bytes:
+        if size is None or size < 0:
+            return b"".join(iter(lambda: self.read(_TAR_BLOCK * 20), b""))
+        if not self.ready and size:
+            if self.ended or self.data:
+                data = self.fh.read(size if self.ended else min(size, self.data))
+                self.offset += len(data)
+                self.data -= 0 if self.ended else len(data)
+                return data
+            self.ready = self._header()
+        passed, self.ready = self.ready[:size], self.ready[size:]
+        return passed
+
+    def _exactly(self, size: int) -> bytes:
+        """``size`` bytes of the stream, fewer only at its end."""
+        parts, left = [], size
+        while left and (part := self.fh.read(left)):
+            parts.append(part)
+            left -= len(part)
+        self.offset += size - left
+        return b"".join(parts)
+
+    def _header(self) -> bytes:
+        """The next header, checked, with an extended header's data; what the archive ends
+        with (an all-zero block, a truncated one) unchecked."""
+        block = self._exactly(_TAR_BLOCK)
+        if len(block) < _TAR_BLOCK or block.count(0) == _TAR_BLOCK:
+            self.ended = True
+            return block
+        kind, name, size = block[156:157], _header_name(block), _number(block[124:136])
+        if _number(block[148:156]) not in _checksums(block):
+            raise ValueError(f"member {name!r}: a tar header whose checksum is wrong (at byte "
+                             f"{self.offset - _TAR_BLOCK} of the tar stream)")
+        if size is None:
+            raise ValueError(f"member {name!r}: a tar header whose size field does not parse "
+                             f"({block[124:136]!r})")
+        if kind == _SPARSE:
+            raise ValueError(f"member {name!r} is a sparse file")
+        blocks = -(-size // _TAR_BLOCK) * _TAR_BLOCK
+        if kind not in _EXTENDED:
+            self.in_a_row = 0
+            # as tarfile: no data after a link, device, folder or fifo, whatever the size says
+            # (nor after a regular file of the old format named as a folder, ending in '/')
+            folder = kind == b"\0" and block[:100].split(b"\0", 1)[0].endswith(b"/")
+            self.data = 0 if kind in _NO_DATA or folder else blocks
+            return block
+        self.in_a_row += 1
+        if size > MAX_HEADER_BYTES:
+            raise ValueError(f"member {name!r}: an extended header of {size} bytes, over the "
+                             f"bound of {MAX_HEADER_BYTES}")
+        if self.in_a_row > MAX_HEADERS_IN_A_ROW:
+            raise ValueError(f"member {name!r}: more than {MAX_HEADERS_IN_A_ROW} extended "
+                             "headers in a row")
+        data = self._exactly(blocks)
+        if kind in _PAX and (problem := _pax_problem(data)):
+            raise ValueError(f"member {name!r}{problem}")
+        return block + data
 
 
-class BoundedTar(tarfile.TarFile):
-    """A tar reader whose headers are bounded (:class:`_BoundedInfo`)."""
+def _number(field: bytes) -> int | None:
+    """A tar header's number field as tarfile reads it, or None: octal digits (up to a NUL,
+    blanks around; none is 0), or GNU's base-256 (a first byte of 0x80, then the number
+    big-endian). Anything else, a negative base-256 number (first byte 0xff) too, is None."""
+    if field[0] == 0x80:
+        return int.from_bytes(field[1:], "big")
+    digits = field.split(b"\0", 1)[0].strip()
+    return int(digits or b"0", 8) if re.fullmatch(rb"[0-7]*", digits) else None
 
-    tarinfo = _BoundedInfo
-    headers_in_a_row = 0
+
+def _checksums(block: bytes) -> tuple[int, int]:
+    """The sums of a header's bytes, its checksum field (offset 148, 8 bytes) counted as
+    spaces: unsigned, as the format has it, and signed, as some old tars wrote it (tarfile
+    takes either)."""
+    rest = block[:148] + block[156:]
+    unsigned = sum(rest) + 8 * 0x20
+    return unsigned, unsigned - 256 * sum(byte >= 0x80 for byte in rest)
+
+
+def _header_name(block: bytes) -> str:
+    """A header's name, as tarfile gives it (ustar's prefix joined, but to GNU's headers)."""
+    name, prefix = (block[a:b].split(b"\0", 1)[0].decode(tarfile.ENCODING, "surrogateescape")
+                    for a, b in ((0, 100), (345, 500)))
+    return f"{prefix}/{name}" if prefix and block[156:157] not in _GNU else name
+
+
+def _pax_problem(data: bytes) -> str | None:
+    """Why a pax header's records (``<length> <keyword>=<value>\\n``, in all its blocks, up
+    to a NUL) are refused, or None: records that do not parse, a key of GNU's sparse files, or
+    a size (:class:`CheckedTarStream` takes each member's size from its own header; members are
+    bounded well under the 8 GiB its field holds)."""
+    at = 0
+    while at < len(data) and data[at] != 0:
+        match = re.match(rb"([0-9]{1,20}) ", data[at:at + 21])
+        end = at + int(match[1]) if match else at
+        if not match or not at + match.end() < end <= len(data) or data[end - 1] != 0x0A:
+            return ": a pax header whose records do not parse"
+        keyword, equals, _ = data[at + match.end():end - 1].partition(b"=")
+        if not keyword or not equals:
+            return ": a pax header whose records do not parse"
+        if keyword.startswith(b"GNU.sparse."):
+            return " is a sparse file"
+        if keyword == b"size":
+            return ": a pax header that sets a member's size"
+        at = end
+    return None
 
 
 def member_problem(member: tarfile.TarInfo, earlier: dict[str, str]) -> str | None:

@@ -2,7 +2,8 @@
 (rotorvib.pipeline.archive), trusting nothing in it.
 
 In order: the archive file's SHA-256 against the published digest, before anything is staged;
-then one streamed read that bounds each header before tarfile reads it, checks each member,
+then one streamed read that checks each tar header before tarfile reads it (from the tar
+format itself: rotorvib.pipeline.archive_checks.CheckedTarStream), checks each member,
 counts every member's bytes towards the bounds (a hard link's are its target's, which a restore
 writes again), refuses any job record that is not one Snakemake writes for this workflow and
 stages what a restore takes (rotorvib.pipeline.archive_checks); the digest of the bytes read,
@@ -45,7 +46,7 @@ from rotorvib.pipeline.archive_checks import (
     MAX_TOTAL_BYTES,
     REBUILT,
     RESTORED,
-    BoundedTar,
+    CheckedTarStream,
     is_digest,
     manifest_digests,
     member_problem,
@@ -116,7 +117,7 @@ def _scan(path: str | Path, sha256: str | None, stage: Path | None) -> dict[str,
         # gzip's reader, not tarfile's: it inflates no more than it is asked for (tarfile's
         # inflates each 10 kB read whole, 10 MB of zeros)
         with gzip.GzipFile(fileobj=reader, mode="rb") as inflated, \
-                BoundedTar.open(fileobj=inflated, mode="r|") as tar:
+                tarfile.open(fileobj=CheckedTarStream(inflated), mode="r|") as tar:
             for member in tar:
                 if problem := member_problem(member, digests):
                     raise ValueError(f"member {member.name!r} {problem}")
