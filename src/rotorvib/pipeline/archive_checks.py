@@ -178,7 +178,7 @@ class CheckedTarStream:
             self.ended = True
             return block
         kind, name, size = block[156:157], _header_name(block), _number(block[124:136])
-        if _number(block[148:156]) not in _checksums(block):
+        if not _checksum_holds(block):
             raise ValueError(f"member {name!r}: a tar header whose checksum is wrong (at byte "
                              f"{self.offset - _TAR_BLOCK} of the tar stream)")
         if size is None:
@@ -217,13 +217,13 @@ def _number(field: bytes) -> int | None:
     return int(digits or b"0", 8) if re.fullmatch(rb"[0-7]*", digits) else None
 
 
-def _checksums(block: bytes) -> tuple[int, int]:
-    """The sums of a header's bytes, its checksum field (offset 148, 8 bytes) counted as
-    spaces: unsigned, as the format has it, and signed, as some old tars wrote it (tarfile
-    takes either)."""
-    rest = block[:148] + block[156:]
+def _checksum_holds(block: bytes) -> bool:
+    """Whether a header's checksum field (offset 148, 8 bytes, a number as :func:`_number`
+    reads it) is the sum of its bytes, the field counted as spaces: unsigned, as the format has
+    it, or signed, as some old tars wrote it (tarfile takes either)."""
+    stored, rest = _number(block[148:156]), block[:148] + block[156:]
     unsigned = sum(rest) + 8 * 0x20
-    return unsigned, unsigned - 256 * sum(byte >= 0x80 for byte in rest)
+    return stored == unsigned or stored == unsigned - 256 * sum(byte >= 0x80 for byte in rest)
 
 
 def _header_name(block: bytes) -> str:
