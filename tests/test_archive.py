@@ -8,15 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.pipeline.archive import (
-    MANIFEST,
-    README,
-    make_archive,
-    restore_archive,
-    sha256_file,
-    verify_archive,
-)
-from rotorvib.pipeline.archive import main as archive_main
+from rotorvib.pipeline.archive import MANIFEST, README, make_archive, sha256_file
+from rotorvib.pipeline.archive_restore import main as archive_main
+from rotorvib.pipeline.archive_restore import restore_archive, verify_archive
 
 
 def test_archive_round_trip_and_corruption(tmp_path, monkeypatch):
@@ -60,25 +54,28 @@ def test_the_same_files_give_a_byte_identical_archive(tmp_path, monkeypatch):
 def test_a_copy_is_stored_once_and_restored_as_a_file(tmp_path, monkeypatch):
     """A results file with the bytes of an earlier one (the report's copy of a figure) is a
     hard link in the archive: the archive grows by a header, not by the file; a restore
-    writes it as a file of its own, with the same bytes."""
+    writes a copy outside results/report/ as a file of its own, with the same bytes, and
+    leaves the report's copy out (rebuilt, never restored)."""
     monkeypatch.chdir(tmp_path)
     figure = os.urandom(50_000)     # incompressible: a copy stored whole would double it
-    for name in ("results/paper_a/figures/f.png", "results/report/shown/f.png"):
+    names = ("results/paper_a/figures/f.png", "results/paper_b/figures/f.png",
+             "results/report/shown/f.png")
+    for name in names:
         Path(name).parent.mkdir(parents=True, exist_ok=True)
         Path(name).write_bytes(figure)
-    once = make_archive(["results/paper_a/figures/f.png"], "one.tar.gz").stat().st_size
-    out = make_archive(["results/report/shown/f.png", "results/paper_a/figures/f.png"],
-                       "both.tar.gz")
-    assert out.stat().st_size - once < 2_000
+    once = make_archive(names[:1], "one.tar.gz").stat().st_size
+    out = make_archive(names, "all.tar.gz")
+    assert out.stat().st_size - once < 4_000
     with tarfile.open(out) as tar:
-        link = tar.getmember("results/report/shown/f.png")
-        assert link.islnk() and link.linkname == "results/paper_a/figures/f.png"
+        for name in names[1:]:
+            link = tar.getmember(name)
+            assert link.islnk() and link.linkname == names[0]
     root = tmp_path / "clone"
     root.mkdir()
-    assert restore_archive(out, sha256_file(out), root) == [
-        "results/paper_a/figures/f.png", "results/report/shown/f.png"]
-    copy = root / "results/report/shown/f.png"
+    assert restore_archive(out, sha256_file(out), root) == list(names[:2])
+    copy = root / names[1]
     assert copy.read_bytes() == figure and copy.stat().st_nlink == 1
+    assert not (root / "results/report").exists()
 
 
 @pytest.mark.parametrize("damage", ["truncate", "garbage", "empty", "no_manifest"])

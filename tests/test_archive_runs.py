@@ -4,7 +4,9 @@ independent runs."""
 
 import base64
 import hashlib
+import io
 import json
+import shlex
 import tarfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -13,7 +15,15 @@ import pytest
 import yaml
 
 from ro_crate import validate_crate
-from rotorvib.pipeline.archive import METADATA_DIR, digest_file, restore_archive, verify_archive
+from rotorvib.pipeline.archive import (
+    MANIFEST,
+    METADATA_DIR,
+    RESTORE_STEPS,
+    digest_file,
+    sha256_file,
+)
+from rotorvib.pipeline.archive_restore import main as archive_main
+from rotorvib.pipeline.archive_restore import restore_archive, verify_archive
 from workflow_runs import (
     REDUCED,
     REDUCED_SHARDED,
@@ -27,10 +37,13 @@ from workflow_runs import (
 pytestmark = pytest.mark.workflow
 
 
-def test_archive_restores_without_recomputation(run_dir, tmp_path):
+def test_archive_restores_without_recomputation(run_dir, tmp_path, monkeypatch, capsys):
     """The archive holds the results, the report's words and pages, the run's configuration
-    and commit and an RO-Crate that passes rocrate-validator; restored into a fresh copy,
-    nothing reruns, and the HTML report is rebuilt from it."""
+    and commit and an RO-Crate that passes rocrate-validator. Its maker can make Snakemake run
+    nothing: an altered job record is refused in one line, and an archive whose landing page
+    and a caption carry Jinja payloads, restored into a fresh copy by the restore notes' steps,
+    reruns nothing but the report's words and pages, rebuilt byte for byte (the archive packed
+    again is the original), and the HTML report from it; no payload runs."""
     work = copy_run(run_dir, tmp_path / "work")
     snakemake(work, "-j2", "archive", *REDUCED)
     archive = work / "results/archive/rotorvib-results.tar.gz"
@@ -49,21 +62,60 @@ def test_archive_restores_without_recomputation(run_dir, tmp_path):
         links = {m.name for m in tar.getmembers() if m.islnk()}
     assert {p.relative_to(work).as_posix()
             for p in (work / "results/report").rglob("*.png")} <= links
+    assert digest_file(archive).read_text().split()[0] == sha256_file(archive)
     fresh = copy_repository(tmp_path / "fresh")
-    published = digest_file(archive).read_text().split()[0]
-    restored = restore_archive(archive, published, fresh)
+    marker = tmp_path / "MARKER"
+    conda = _altered(archive, tmp_path / "conda.tar.gz", {
+        next(n for n in _members(archive) if n.startswith(METADATA_DIR)): lambda data: json.dumps(
+            {**json.loads(data), "conda_env": base64.b64encode(
+                f"!!python/object/apply:os.system ['touch {marker}']".encode()).decode()}).encode()})
+    monkeypatch.chdir(fresh)
+    assert archive_main(["restore", str(conda), "--sha256", sha256_file(conda)]) == 1
+    assert len(capsys.readouterr().err.splitlines()) == 1 and not (fresh / "results").exists()
+    jinja = f"{{{{ self.__init__.__globals__.__builtins__.__import__('os').system('touch {marker}') }}}}"
+    texts = ("results/report/landing.rst",
+             next(n for n in members if n.startswith("results/report/captions/")))
+    hostile = _altered(archive, tmp_path / "hostile.tar.gz",
+                       {name: lambda data: data + jinja.encode() for name in texts})
+    restored = restore_archive(hostile, sha256_file(hostile), fresh)
     assert "Snakefile" not in restored and "results/paper_c/datasets/ga.nc" in restored
-    with ThreadPoolExecutor(1) as pool:      # the validator works while Snakemake restores
+    assert not [name for name in restored if name.startswith("results/report/")]
+    touch, rebuild = (shlex.split(step)[1:] for step in RESTORE_STEPS.split(" && "))
+    snakemake(fresh, *touch, *REDUCED)
+    assert planned_jobs(snakemake(fresh, *rebuild, *REDUCED)) == {
+        "report_text", "report_results", "all"}
+    with ThreadPoolExecutor(1) as pool:      # the validator works while Snakemake reports
         issues = pool.submit(validate_crate, fresh, tmp_path / "cache")
-        snakemake(fresh, "-j1", "--touch", *REDUCED)
         assert planned_jobs(snakemake(fresh, "-n", *REDUCED)) == set()
         snakemake(fresh, "--report", "results/report.html", *REDUCED)   # rebuilt from it
         assert "Verdict totals" in (fresh / "results/report.html").read_text(errors="replace")
         rebuilt = snakemake(fresh, "-j1", "archive", *REDUCED)       # and the archive, again
         assert planned_jobs(rebuilt) == {"archive"}
         assert (fresh / archive.relative_to(work)).read_bytes() == archive.read_bytes()
+    assert not marker.exists()
     assert [message for _, message, _ in issues.result()] == [
         "The Root Data Entity SHOULD have a `publisher` property (Organization or Person)"]
+
+
+def _altered(archive: Path, path: Path, changes) -> Path:
+    """``archive`` with the bytes of the members named in ``changes`` (name -> function of the
+    bytes) changed and its manifest recomputed, as its maker would, who publishes its digest."""
+    with tarfile.open(archive) as tar:
+        members = [(m, tar.extractfile(m).read() if m.isfile() else None)
+                   for m in tar.getmembers()]
+    members = [(m, changes[m.name](data) if m.name in changes else data) for m, data in members]
+    data_of = {m.name: data for m, data in members}
+    data_of[MANIFEST] = "".join(
+        f"{hashlib.sha256(data_of[name]).hexdigest() if name in changes else digest}  {name}\n"
+        for digest, name in (line.split("  ", 1)
+                             for line in data_of[MANIFEST].decode().splitlines())).encode()
+    with tarfile.open(path, "w:gz", format=tarfile.PAX_FORMAT) as tar:
+        for member, data in members:
+            data = data_of[member.name]
+            if data is not None:
+                member.size = len(data)
+            tar.addfile(member, io.BytesIO(data) if data is not None else None)
+    return path
 
 
 def _members(archive: Path, links: bool = True) -> dict[str, bytes]:

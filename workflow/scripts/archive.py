@@ -7,8 +7,8 @@ from pathlib import Path
 
 import snakemake as snakemake_package
 
-from rotorvib.pipeline.archive import make_archive
-from rotorvib.pipeline.crate import CRATE, crate_metadata
+from rotorvib.pipeline.archive import CRATE, make_archive
+from rotorvib.pipeline.crate import crate_metadata
 from rotorvib.io.provenance import git_date
 
 job.start(snakemake.log[0])

@@ -21,7 +21,6 @@ from rocrate.rocrate import ROCrate
 from rotorvib.pipeline.archive import sha256_file
 from rotorvib.pipeline.report import label
 
-CRATE = "ro-crate-metadata.json"
 FORMATS = {".nc": "application/x-netcdf", ".csv": "text/csv", ".md": "text/markdown",
            ".png": "image/png", ".html": "text/html", ".yaml": "application/yaml",
            ".cff": "application/yaml", ".txt": "text/plain", ".json": "application/json",
