@@ -8,26 +8,27 @@ job's script again, which Snakemake runs as ``__main__``. A forked process leave
 ``os._exit`` and runs none of the job's exit handlers; the CPU it spent counts in the job's
 (``getrusage`` of the waited-for children).
 
-The workers end with their job, however it ends. Killed outright (SIGKILL, which nothing can
-catch), the job leaves them orphans: so each asks the kernel for SIGKILL when the process that
-forked it dies (``prctl(PR_SET_PDEATHSIG)``, Linux), and leaves at once if that process is
-already gone. Interrupted (Ctrl-C, which reaches the whole process group, or SIGTERM, which
-Snakemake and SLURM send to the job alone), the job drops the tasks not yet done and kills its
-workers before it exits, instead of finishing every task first: the workers ignore SIGINT,
-which their job acts on for them, and SIGTERM raises ``SystemExit`` in the job while it waits
-for them.
+Worker ``k`` of ``n`` computes the items ``k, k + n, ...`` and sends their results (or the first
+error) through a pipe of its own when it is done; the job reads the pipes in turn and puts the
+results back in order. No thread, queue or lock is shared with the workers, so nothing the job
+waits on can be left held by a worker that died.
+
+The workers end with their job, however it ends. Killed (SIGKILL) or terminated (SIGTERM,
+which Snakemake and SLURM send to the job alone), the job leaves them orphans: so each asks the
+kernel for SIGKILL when the process that forked it dies (``prctl(PR_SET_PDEATHSIG)``, Linux),
+and leaves at once if that process is already gone. Interrupted (Ctrl-C, which reaches the
+whole process group), the workers ignore it and the job, on any exception, kills them and
+reaps them before it raises.
 """
 
 from __future__ import annotations
 
 import ctypes
-import multiprocessing
 import os
+import pickle
 import signal
 import sys
-import threading
 from collections.abc import Callable, Sequence
-from contextlib import contextmanager
 
 from rotorvib.checks import integer
 
@@ -37,45 +38,75 @@ PR_SET_PDEATHSIG = 1
 
 def map_forked(function: Callable, items: Sequence, workers: int) -> list:
     """``[function(item) for item in items]``, in order, by up to ``workers`` forked processes
-    (in this process where ``workers`` or the number of items is 1). ``function`` must be
-    picklable (a module's function, or a ``functools.partial`` of one), and so must each item
-    and result. An exception raised by a task is raised here; on any exception, an interrupt
-    included, the tasks not yet done are dropped and the workers killed (module docstring)."""
+    (in this process where ``workers`` or the number of items is 1). Each item's result must be
+    picklable. An exception raised by a task is raised here; on any exception, an interrupt
+    included, the workers are killed first (module docstring)."""
     workers = min(integer("workers", workers, 1), len(items))
     if workers <= 1:
         return [function(item) for item in items]
-    context = multiprocessing.get_context("fork")
-    with _sigterm_exits(), context.Pool(workers, _worker_start, (os.getpid(),)) as pool:
-        try:
-            return pool.map(function, items, chunksize=1)
-        finally:
-            pool.terminate()               # done: idle workers; else: their tasks dropped
-            pool.join()                    # waited for: their CPU counts in the job's
-
-
-def _worker_start(job: int) -> None:
-    """In each worker as it starts: die with the job (``job``, its PID), leave Ctrl-C to it."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if sys.platform.startswith("linux"):
-        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    if os.getppid() != job:                # the job died before the request was made
-        os._exit(1)
-
-
-@contextmanager
-def _sigterm_exits():
-    """SIGTERM raises ``SystemExit`` (status 143, as the signal's own) in the job's main thread
-    while the block runs, so that the workers are killed on the way out; Python's default
-    would end the job at once and leave them."""
-    if threading.current_thread() is not threading.main_thread():
-        yield                              # only the main thread can handle signals
-        return
-
-    def exit_143(signum, frame):
-        raise SystemExit(128 + signal.SIGTERM)
-
-    previous = signal.signal(signal.SIGTERM, exit_143)
+    pipes = {}
     try:
-        yield
+        for k in range(workers):
+            read, write = os.pipe()
+            pid = os.fork()
+            if pid == 0:
+                os.close(read)
+                _work(function, items[k::workers], write, os.getppid())
+            os.close(write)
+            pipes[pid] = read
+        shares = [_received(read) for read in pipes.values()]
+    except BaseException:
+        for pid in pipes:
+            os.kill(pid, signal.SIGKILL)
+        raise
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for pid, read in pipes.items():
+            os.close(read)
+            os.waitpid(pid, 0)             # reaped: their CPU counts in the job's
+    results = [None] * len(items)
+    for k, share in enumerate(shares):
+        results[k::workers] = share
+    return results
+
+
+def _work(function: Callable, share: Sequence, write: int, job: int) -> None:
+    """In a worker: die with the job (``job``, its PID), leave Ctrl-C to it, compute ``share``
+    and send ``(True, results)`` or ``(False, the first error)`` through ``write``; never
+    returns."""
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        if sys.platform.startswith("linux"):
+            ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != job:            # the job died before the request was made
+            os._exit(1)
+        try:
+            message = pickle.dumps((True, [function(item) for item in share]))
+        except Exception as error:         # the job raises it
+            message = pickle.dumps((False, _picklable(error)))
+        with os.fdopen(write, "wb") as fh:
+            fh.write(message)
+        os._exit(0)
+    finally:
+        os._exit(1)                        # never back into the job's code
+
+
+def _picklable(error: Exception) -> Exception:
+    """``error``, or a RuntimeError saying what it was where it cannot be pickled."""
+    try:
+        pickle.loads(pickle.dumps(error))
+        return error
+    except Exception:
+        return RuntimeError(f"{type(error).__name__}: {error}")
+
+
+def _received(read: int) -> list:
+    """A worker's results from its pipe; its error raised here; a RuntimeError where it ended
+    without sending them."""
+    with os.fdopen(read, "rb", closefd=False) as fh:
+        data = fh.read()
+    if not data:
+        raise RuntimeError("a forked worker ended without its results")
+    ok, payload = pickle.loads(data)
+    if not ok:
+        raise payload
+    return payload
