@@ -88,8 +88,10 @@ def test_the_workers_end_with_their_job(stop, status):
     seconds (before, its killed or terminated job's workers ran on past 60 s and the
     interrupted one finished its running tasks first, 40 s; each task here takes 30 s); the job
     ends as Python's does on each signal."""
+    # Ctrl-C's default restored: a pytest-xdist worker ignores SIGINT, and a child inherits that
     job = subprocess.Popen([sys.executable, "-c", JOB], stdout=subprocess.PIPE, text=True,
-                           env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+                           env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+                           preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     workers = set()
     try:
         workers = {int(job.stdout.readline()) for _ in range(2)}
