@@ -35,6 +35,10 @@ CASES = [
     ("paper_c.broadband.band", [1.3, 0.7], None), ("paper_c.broadband.n_band", 5, None),
     ("paper_c.broadband.den_hartog_d", 0.0, None),
     ("paper_c.broadband.nsga.pop_size", 2, None), ("paper_c.broadband.nsga.seed", -1, None),
+    # found by the fuzzer's runs: accepted, then failed inside a job
+    ("paper_c.rotor.M", 50.0, "paper_c.frequency_response"),
+    ("paper_c.rotor.R", 1.4, "paper_c.frequency_response"),
+    ("paper_c.distance_study.offsets", [0.01, 0.02], "paper_c.distance_study.offsets"),
     ("paper_c.den_hartog.d", -0.1, None), ("paper_c.time_response.t_end", 0, None),
     ("paper_c.time_response.rtol", 1e-16, None),
     ("paper_c.time_response.samples_per_period", 4, None),

@@ -8,6 +8,8 @@ import numpy as np
 
 from rotorvib.checks import sobol_design_problem
 from rotorvib.config_problems import seed_spread_problem, tolerance_problem
+from rotorvib.models.absorber.frequency_response import natural_frequencies
+from rotorvib.models.absorber.parameters import Rotor, dual_absorber, undamped
 
 
 def fig6_problems(c: dict) -> list[tuple[str, str]]:
@@ -23,14 +25,38 @@ def fig6_problems(c: dict) -> list[tuple[str, str]]:
 
 def distance_problems(c: dict) -> list[tuple[str, str]]:
     """The distance study moves both absorber sets of Table 2 by each offset: none may move a
-    set to the disk centre or through it."""
+    set to the disk centre or through it, and one must be 0 (Table 2 itself, which the claim
+    sets the moved designs against)."""
+    offsets = c["distance_study"]["offsets"]
+    found = [] if 0 in offsets else [("distance_study.offsets", f"{offsets} must contain 0 "
+                                      "(Table 2's own distances, the claim's reference)")]
     nearest = min(c["table2"]["d1"], c["table2"]["d2"])
-    lowest = min(c["distance_study"]["offsets"])
-    if nearest + lowest > 0:
+    if nearest + min(offsets) > 0:
+        return found
+    return found + [("distance_study.offsets", f"{min(offsets):g} m moves the set at "
+                     f"{nearest:g} m (paper_c.table2) to or through the disk centre; each "
+                     f"offset must exceed {-nearest:g} m")]
+
+
+def frequency_range_problems(c: dict) -> list[tuple[str, str]]:
+    """Fig 5's undamped peaks are Table 2's undamped natural frequencies nearest w = 1 on
+    either side (:func:`rotorvib.papers.c.claims.undamped_peaks`): the frequency range must
+    hold one on each side, a grid step or more inside it, for the sampled curve to show it."""
+    fr = c["frequency_response"]
+    try:
+        rotor = Rotor(**c["rotor"])
+        natural = natural_frequencies(rotor, undamped(dual_absorber(**c["table2"])))
+    except ValueError:
+        return []                              # the values' own checks name them
+    step = (fr["w_max"] - fr["w_min"]) / (fr["n_points"] - 1)
+    below = natural[(natural > fr["w_min"] + step) & (natural < 1)]
+    above = natural[(natural > 1) & (natural < fr["w_max"] - step)]
+    if below.size and above.size:
         return []
-    return [("distance_study.offsets", f"{lowest:g} m moves the set at {nearest:g} m "
-                                       "(paper_c.table2) to or through the disk centre; each "
-                                       f"offset must exceed {-nearest:g} m")]
+    said = ", ".join(f"{w:.4g}" for w in natural)
+    return [("frequency_response", f"[{fr['w_min']:g}, {fr['w_max']:g}] must hold an undamped "
+             f"natural frequency of Table 2 on each side of w = 1 (Fig 5's peaks); with "
+             f"paper_c.rotor and paper_c.table2 they are {said}: widen the range")]
 
 
 def spin_problems(c: dict) -> list[tuple[str, str]]:
@@ -50,7 +76,8 @@ def problems(c: dict) -> list[tuple[str, str]]:
     as ``(key within paper_c, what is wrong)``: a Sobol design that cannot be run, a search
     seed repeated among its spread seeds, a tolerance finer than double precision, a Fig 6
     claim about a curve the mass-ratio family does not draw, a distance offset through the
-    disk centre, a machine speed beyond the absorbers' spring loss."""
+    disk centre or none at 0, a machine speed beyond the absorbers' spring loss, a frequency
+    range without Fig 5's two undamped peaks."""
     found = []
     if problem := sobol_design_problem(c["uncertainty"]["n_base"],
                                        c["uncertainty"]["convergence"]):
@@ -59,4 +86,5 @@ def problems(c: dict) -> list[tuple[str, str]]:
         found.append(("broadband.nsga.spread_seeds", problem))
     if problem := tolerance_problem(c["time_response"]["rtol"]):
         found.append(("time_response.rtol", problem))
-    return found + fig6_problems(c) + distance_problems(c) + spin_problems(c)
+    return (found + fig6_problems(c) + distance_problems(c) + spin_problems(c)
+            + frequency_range_problems(c))
