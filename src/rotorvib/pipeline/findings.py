@@ -113,7 +113,7 @@ def render(template: str, rows: dict[tuple[str, str], dict]) -> str:
 #: backticks).
 REFERENCE = re.compile(r"`[^`]*`|\b(?:Figs?|Tables?|eqs?\.|sections?|IC|ref\.)\s*"
                        r"[\[(]?\d+[\])]?(?:\s?(?:[–,-]|and)\s?[\[(]?\d+[\])]?)*|\(\d+\)",
-                       re.I)
+                       re.IGNORECASE)
 #: Where the findings start: the template's method above it may name verdicts as definitions.
 FINDINGS = "## What the reproduction found"
 
@@ -122,12 +122,12 @@ def typed(template: str) -> list[str]:
     """The numbers and verdict words the template states outside its placeholders and
     references: each a claim of the run typed by hand (verdict words count from
     :data:`FINDINGS` on: above it the method defines them)."""
-    method, _, found = template.partition(FINDINGS)
     text = REFERENCE.sub(" ", PLACEHOLDER.sub(" ", template))
     text = text.replace("{{verdicts}}", " ").replace("{{totals}}", " ")
-    found = REFERENCE.sub(" ", PLACEHOLDER.sub(" ", found))
-    words = [w for w in VERDICT_WORDS if re.search(rf"\b{w}\b", found)
-             and (found := re.sub(rf"\b{w}\b", " ", found))]
+    found, words = REFERENCE.sub(" ", PLACEHOLDER.sub(" ", template.partition(FINDINGS)[2])), []
+    for word in VERDICT_WORDS:          # longest first: NOT SUPPORTED is not also SUPPORTED
+        found, n = re.subn(rf"\b{word}\b", " ", found)
+        words += [word] if n else []
     return words + re.findall(r"\d+(?:[.,]\d+)*", text)
 
 
