@@ -2,6 +2,7 @@
 
 import csv
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -192,7 +193,6 @@ def test_a_self_contradicting_number_is_explained_against_its_implied_value():
     (a,) = d.analyse(table, values, reproduced, [])
     assert a.printed == 32.9
     hyps = (d.Hypothesis("t", "swap", "variant", 55.0), d.Hypothesis("t", "fix", "variant", 32.9))
-    from dataclasses import replace
     a = replace(a, hypotheses=hyps)
     assert [h.name for h in a.reproduced_by] == ["fix"]
     # a number the paper states once stays judged against its printed value
