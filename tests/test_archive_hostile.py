@@ -281,6 +281,26 @@ def test_an_obstacle_in_the_clone_is_found_before_the_first_move(tmp_path, capsy
     assert _tree(root) == before and _tree(elsewhere) == {}
 
 
+@pytest.mark.parametrize("raced", ["link on the way", "link in place"])
+def test_a_link_raced_in_after_the_checks_is_never_followed(tmp_path, capsys, monkeypatch,
+                                                            raced):
+    """A link put on the way, or in a file's place, between the checks and the moves (the
+    checks are skipped here, as a racer would win): the moves open each folder without
+    following a link, so the link is refused or replaced, never written through; undone."""
+    archive, root = _six_hundred(tmp_path)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.setattr(archive_restore, "_destination_problem", lambda root, relative: None)
+    if raced == "link on the way":
+        (root / "results/d300").symlink_to(elsewhere)
+    else:
+        (root / "results/d300").mkdir()
+        (root / "results/d300/f.txt").symlink_to(elsewhere / "f.txt")
+    before = _tree(root)
+    _refused(archive, root, capsys, str(root / "results/d300"), "the clone is as it was")
+    assert _tree(root) == before and _tree(elsewhere) == {}
+
+
 @pytest.mark.parametrize("failure", [errno.ENOSPC, errno.EXDEV])
 def test_a_failed_move_is_undone(tmp_path, capsys, monkeypatch, failure):
     """The 300th move fails (a full disk, another file system raced in): the 299 files moved
@@ -290,12 +310,12 @@ def test_a_failed_move_is_undone(tmp_path, capsys, monkeypatch, failure):
     before = _tree(root)
     replace, moves = os.replace, []
 
-    def failing(source, target):
+    def failing(source, target, **folders):
         if ".restore-" in str(source) and ".replaced" not in str(source):
             moves.append(target)
             if len(moves) == 300:
                 raise OSError(failure, os.strerror(failure))
-        return replace(source, target)
+        return replace(source, target, **folders)
 
     monkeypatch.setattr(os, "replace", failing)
     _refused(archive, root, capsys, "results/d299/f.txt: ", os.strerror(failure),

@@ -20,11 +20,13 @@ steps, rotorvib.pipeline.archive.RESTORE_NOTES).
 
 from __future__ import annotations
 
+import errno
 import gzip
 import hashlib
 import io
 import os
 import shutil
+import stat
 import sys
 import tarfile
 import tempfile
@@ -240,51 +242,94 @@ def _destination_problem(root: Path, relative: str) -> str | None:
     return None
 
 
+class _Folders:
+    """The clone's folders on the way to the destinations, each opened once, from the clone's
+    root down, without following a link (``O_NOFOLLOW``): a file moved into a folder so opened
+    lands in that folder, whatever link a racer puts on its path after the checks."""
+
+    def __init__(self, root: Path):
+        self.root = root
+        self.open_ = {(): os.open(root, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)}
+        self.made: list[tuple[int, str]] = []      # (parent's descriptor, name), in order
+
+    def get(self, parts: tuple[str, ...]) -> int:
+        """The descriptor of the folder ``parts`` below the root, made where missing."""
+        if parts not in self.open_:
+            parent, name = self.get(parts[:-1]), parts[-1]
+            flags = os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC
+            try:
+                try:
+                    fd = os.open(name, flags, dir_fd=parent)
+                except FileNotFoundError:
+                    os.mkdir(name, dir_fd=parent)
+                    self.made.append((parent, name))
+                    fd = os.open(name, flags, dir_fd=parent)
+            except OSError as error:
+                here = self.root.joinpath(*parts)
+                if error.errno == errno.ELOOP:
+                    raise ValueError(f"{here} is a symbolic link: a restore writes only "
+                                     f"inside {self.root}") from None
+                if error.errno == errno.ENOTDIR:
+                    raise ValueError(f"{here} is not a folder") from None
+                raise
+            self.open_[parts] = fd
+        return self.open_[parts]
+
+    def close(self) -> None:
+        for fd in self.open_.values():
+            os.close(fd)
+
+
 def _move_all(root: Path, stage: Path, plan: dict[str, str]) -> None:
-    """Move each staged member to its destination; on any failure (a full disk, a race that put
-    a link on the way) undo every move, restoring the files replaced (kept under ``stage``,
-    on the same file system) and removing the folders made, and raise ``ValueError``."""
-    moved, made = [], []        # (destination, its backup or None); folders made
+    """Move each staged member to its destination, into its folder as :class:`_Folders` opened
+    it; on any failure (a full disk, a race that put a link on the way) undo every move,
+    restoring the files replaced (kept under ``stage``, on the same file system) and removing
+    the folders made, and raise ``ValueError``."""
+    folders, moved = _Folders(root), []     # (folder's descriptor, file name, backup or None)
+    (stage / ".replaced").mkdir()
     try:
-        for name, relative in plan.items():
-            if problem := _destination_problem(root, relative):
-                raise ValueError(problem)
-            here = root
-            for part in relative.split("/")[:-1]:
-                here = here / part
-                if not here.exists():
-                    here.mkdir()
-                    made.append(here)
-            target, backup = root / relative, None
-            if target.exists():
-                backup = stage / ".replaced" / relative
-                backup.parent.mkdir(parents=True, exist_ok=True)
-                os.replace(target, backup)
-            moved.append((target, backup))
-            os.replace(stage / name, target)
+        for i, (name, relative) in enumerate(plan.items()):
+            *parts, leaf = relative.split("/")
+            folder, backup = folders.get(tuple(parts)), None
+            try:
+                mode = os.stat(leaf, dir_fd=folder, follow_symlinks=False).st_mode
+            except FileNotFoundError:
+                mode = None
+            if mode is not None and not stat.S_ISREG(mode):
+                raise ValueError(f"{root / relative} is not a regular file")
+            if mode is not None:
+                backup = stage / ".replaced" / str(i)
+                os.replace(leaf, backup, src_dir_fd=folder)
+            moved.append((folder, leaf, backup))
+            os.replace(stage / name, leaf, dst_dir_fd=folder)
     except (OSError, ValueError) as error:
-        undone = _undo(moved, made)
+        undone = _undo(moved, folders.made)
         reason = error.strerror if isinstance(error, OSError) and error.strerror else error
         raise ValueError(f"{relative}: {reason}; "
                          + ("the clone is as it was" if undone else
                             f"could not undo every move (the replaced files are in {stage})")) \
             from None
+    finally:
+        folders.close()
 
 
 def _undo(moved, made) -> bool:
-    """Undo :func:`_move_all`'s moves, last first; whether all were undone."""
+    """Undo :func:`_move_all`'s moves, last first, and remove the folders it made; whether all
+    were undone."""
     undone = True
-    for target, backup in reversed(moved):
+    for folder, leaf, backup in reversed(moved):
         try:
-            if target.exists() or target.is_symlink():
-                target.unlink()
+            try:
+                os.unlink(leaf, dir_fd=folder)
+            except FileNotFoundError:
+                pass
             if backup is not None:
-                os.replace(backup, target)
+                os.replace(backup, leaf, dst_dir_fd=folder)
         except OSError:
             undone = False
-    for folder in reversed(made):
+    for parent, name in reversed(made):
         try:
-            folder.rmdir()
+            os.rmdir(name, dir_fd=parent)
         except OSError:
             undone = False
     return undone
