@@ -4,7 +4,7 @@
 # with a SHA-256 manifest, restore notes and an RO-Crate describing the run (rotorvib.pipeline.crate);
 # two builds of one commit and configuration give the same bytes (rotorvib.pipeline.archive). The HTML
 # report is rebuilt from a restored archive by `snakemake --report`.
-from rotorvib.io.provenance import git_state
+from rotorvib.io.provenance import code_state
 
 RUN_RECORD = {
     "config": f"{RESULTS_DIR}/run/config.yaml",
@@ -18,10 +18,10 @@ rule run_record:
     log:
         logs("run_record"),
     localrule: True
-    # A change of the configuration or of the commit rewrites the record.
+    # A change of the configuration or of the library's commit rewrites the record.
     params:
         config=config,
-        commit=git_state(WORKFLOW_ROOT),
+        commit=code_state(),
     message:
         "The run's configuration and commit, as files"
     script:

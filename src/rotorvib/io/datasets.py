@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from rotorvib.io.provenance import canonical_json, config_hash, git_state, package_versions
+from rotorvib.io.provenance import canonical_json, code_state, config_hash, package_versions
 
 PROJECT_URL = "https://github.com/rotorvib/rotorvib"
 LICENSE = "CC-BY-4.0 (data); MIT (code)"
@@ -47,15 +47,15 @@ class Provenance:
     rule: str
     config: dict
     seed: int | None = None
-    repo: str = "."
     extra: dict = field(default_factory=dict)
 
     def attrs(self) -> dict:
-        commit, dirty = git_state(self.repo)
+        commit, dirty, origin = code_state()
         attrs = {
             "provenance_rule": self.rule,
             "provenance_git_commit": commit,
             "provenance_git_dirty": int(dirty),
+            "provenance_code_origin": origin,
             "provenance_config_sha256": config_hash(self.config),
             "provenance_config": canonical_json(self.config),
             "provenance_packages": canonical_json(package_versions()),

@@ -25,7 +25,7 @@ RECORDED_PACKAGES = ("rotorvib", "numpy", "scipy", "numba", "xarray", "netCDF4",
                      "sympy", "matplotlib", "snakemake")
 
 
-def git_state(repo: str | Path = ".") -> tuple[str, bool]:
+def git_state(repo: str | Path) -> tuple[str, bool]:
     """Return ``(commit, dirty)`` of the git work tree at ``repo``; ``("unknown", False)`` outside git."""
     try:
         commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=repo, capture_output=True,
@@ -37,11 +37,42 @@ def git_state(repo: str | Path = ".") -> tuple[str, bool]:
     return commit, bool(status.strip())
 
 
-def git_date(repo: str | Path = ".") -> str:
-    """ISO 8601 date of the commit checked out at ``repo`` (the archive's publication date, the
-    same for every build of one commit); ``SOURCE_DATE_EPOCH`` (else 0) outside git."""
+#: The imported package's folder: its provenance is read from where its code is, never from
+#: the working folder (a project that uses the workflow as a module is a git work tree of its
+#: own).
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
+
+
+def code_origin(package: str | Path = PACKAGE_DIR) -> str:
+    """``"git checkout"`` where ``package``'s files are tracked by the git work tree they lie
+    in (a clone, an editable install), else ``"untracked copy"`` (a wheel in site-packages,
+    a copy of the sources, even one inside another project's work tree)."""
     try:
-        return subprocess.run(["git", "log", "-1", "--format=%cI"], cwd=repo,
+        subprocess.run(["git", "ls-files", "--error-unmatch", "__init__.py"], cwd=package,
+                       capture_output=True, check=True)
+    except (OSError, subprocess.CalledProcessError):
+        return "untracked copy"
+    return "git checkout"
+
+
+def code_state(package: str | Path = PACKAGE_DIR) -> tuple[str, bool, str]:
+    """``(commit, dirty, origin)`` of the code that runs: the commit of the work tree the
+    package is checked out in (:func:`git_state`) and :func:`code_origin`; an untracked copy's
+    commit is ``"unknown"`` (its version is among :func:`package_versions`)."""
+    origin = code_origin(package)
+    if origin != "git checkout":
+        return "unknown", False, origin
+    return (*git_state(package), origin)
+
+
+def git_date(package: str | Path = PACKAGE_DIR) -> str:
+    """ISO 8601 date of the commit the package is checked out at (the archive's publication
+    date, the same for every build of one commit); ``SOURCE_DATE_EPOCH`` (else 0) for an
+    untracked copy or outside git."""
+    try:
+        if code_origin(package) != "git checkout":
+            raise OSError("an untracked copy")
+        return subprocess.run(["git", "log", "-1", "--format=%cI"], cwd=package,
                               capture_output=True, text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         epoch = int(os.environ.get("SOURCE_DATE_EPOCH", 0))

@@ -33,6 +33,9 @@ from rotorvib.io.cache_files import read_checked, warn_damaged, write_checked
 PACKAGE = "rotorvib"
 #: The memo's folder, and what its entries depend on besides a module's text.
 MEMO = Path(__file__).parent / "__pycache__" / "fingerprints"
+#: The folder the imported package lives in (``src`` of a clone, or ``site-packages``): the
+#: closures and fingerprints read the code that runs, wherever Snakemake's working folder is.
+SOURCES = Path(__file__).resolve().parents[2]
 _MEMO_VERSION = hashlib.sha256(Path(__file__).read_bytes() + sys.version.encode()).hexdigest()
 
 
@@ -146,7 +149,7 @@ def _with_parents(name: str) -> list[str]:
     return [".".join(parts[:i]) for i in range(1, len(parts) + 1)]
 
 
-def import_closure(*entries: str | Path, root: str | Path = "src") -> tuple[str, ...]:
+def import_closure(*entries: str | Path, root: str | Path = SOURCES) -> tuple[str, ...]:
     """Sorted names of the ``rotorvib`` modules that ``entries`` (script paths or module names)
     import, directly or through each other, including enclosing packages."""
     root = Path(root)
@@ -192,7 +195,7 @@ def behaviour_digest(source: str) -> str:
 
 
 @lru_cache(maxsize=None)
-def code_fingerprint(*entries: str, root: str = "src") -> str:
+def code_fingerprint(*entries: str, root: str | Path = SOURCES) -> str:
     """SHA-256 over the names and :func:`behaviour_digest` of every module in
     ``import_closure(*entries)``."""
     digest = hashlib.sha256()
