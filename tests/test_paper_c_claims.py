@@ -2,13 +2,15 @@
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from rotorvib.choices import Close
 from rotorvib.comparison import claim_verdict
 from rotorvib.models.absorber.frequency_response import bare_rotor_amplitude
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber, dual_to_vector
-from rotorvib.papers.c.claims import frequency_rows
+from rotorvib.papers.c.claims import frequency_rows, table2_side_by_side
 from rotorvib.papers.c.studies import frequency_response_dataset
+from rotorvib.pipeline.report_tables import HEADERS
 
 
 def test_better_at_all_frequencies_is_tested_at_every_frequency(config):
@@ -135,3 +137,17 @@ def test_fig6s_ranking_depends_on_what_the_family_holds_fixed(config):
                                                       for mu in (0.2, 0.6))
     assert at_resonance["fixed_total"][0.85] > max(at_resonance["fixed_total"][mu]
                                                    for mu in (0.2, 0.6))
+
+
+def test_table2s_objective_row_is_labelled_as_computed_not_as_the_papers(table2):
+    """The table's column is Table 2's design, not the paper's numbers: its objective, eq.
+    (20) at that design, is computed here (the report labelled 0.00395 rad "Table 2 (paper)",
+    where the paper prints 0.00075)."""
+    x = dual_to_vector(table2)
+    ga = xr.Dataset({"lower_bound": ("p", x / 2), "upper_bound": ("p", x * 2),
+                     "x_table2": ("p", x), "x_opt": ("p", x * 1.1),
+                     "theta_table2": 0.00395, "theta_opt": 0.0002})
+    rows = table2_side_by_side(ga)
+    assert [r["table2_design"] for r in rows[:-1]] == pytest.approx(list(x))
+    assert rows[-1]["parameter"].endswith("computed here") and rows[-1]["table2_design"] == 0.00395
+    assert all("paper" not in HEADERS.get(column, column) for column in rows[0])

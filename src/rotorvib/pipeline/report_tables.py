@@ -38,7 +38,7 @@ MORE = ("source", "paper_says", "margin", "uncertainty", "margin_unit", "margin_
 HEADERS = {"paper_value": "paper value", "rel_error": "relative error",
            "paper_says": "the paper says", "choices": "rests on", "margin_basis": "margin basis",
            "margin_unit": "margin unit", "ga_this_work": "GA (this work)",
-           "table2_paper": "Table 2 (paper)"}
+           "table2_design": "Table 2's design"}
 #: A column name's unit suffix and the unit it stands for: ``force_max_N`` -> "force max (N)".
 UNITS = {"_rad_s": "rad/s", "_kg": "kg", "_N": "N", "_s": "s", "_rad": "rad", "_m": "m"}
 #: Significant digits of a number no paper value fixes the precision of.
