@@ -134,15 +134,13 @@ def _shown(page, path: tuple[str, ...], errors: list[str], changed: bool) -> Vie
         view.kind = "html"
         content = frame.content_frame()
         content.wait_for_load_state()
-        if content.evaluate("() => !!document.querySelector('[id^=itables_]')"):
-            content.wait_for_selector("table.dataTable tbody tr")   # DataTables has drawn it
         view.table_rows = content.evaluate(
-            "() => { const t = document.querySelector('table.dataTable') || "
+            "() => { const t = document.querySelector('table.results') || "
             "document.querySelector('table'); "
             "return t ? t.querySelectorAll('tbody tr').length : -1; }")
         view.text = content.evaluate("() => document.body.innerText")
         view.cells = content.evaluate(
-            "() => { const t = document.querySelector('table.dataTable'); if (!t) return []; "
+            "() => { const t = document.querySelector('table.results'); if (!t) return []; "
             "const texts = row => [...row.cells].map(c => c.innerText.trim()); "
             "return [texts(t.tHead.rows[0]), ...[...t.tBodies[0].rows].map(texts)]; }")
     errors.clear()

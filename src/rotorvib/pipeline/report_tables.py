@@ -1,8 +1,9 @@
 """A table of the report as a page a reviewer reads: what matters first (the paper's value, ours,
 the error and the verdict), headers in words with units, every number rounded to what it can
 tell, long texts and the columns a reviewer does not scan for folded into toggles, per-column
-filters and sorting by DataTables (through itables, its whole bundle inside the page: the report
-works offline), and the CSV itself, with every digit, as a download.
+filters and sorting (:data:`SCRIPT`, a few lines inside the page: the report works offline, and
+every table page no longer carries its own 970 kB copy of DataTables), and the CSV itself, with
+every digit, as a download.
 
 Snakemake's report shows a ``text/html`` result inside the page (in a frame) and offers any other
 file, a CSV among them, only as a download: hence a page per table. Every text is escaped here
@@ -16,13 +17,6 @@ import csv
 import html
 import io
 import math
-import re
-from functools import cache
-
-import pandas as pd
-from itables import to_html_datatable
-from itables.javascript import generate_init_offline_itables_html
-from itables.options import dt_bundle
 
 from rotorvib.paper_values import decimals
 
@@ -49,14 +43,53 @@ FOLD = 60
 _STYLE = """
 body { font: 14px/1.45 system-ui, sans-serif; margin: 1.2em; color: #1e293b; }
 h1 { font-size: 1.3em; margin: 0 0 .4em; }
-.caption { max-width: 70em; }
+.caption { max-width: 70em; overflow-wrap: anywhere; }
 .bar { margin: .8em 0; }
-table.dataTable td { vertical-align: top; max-width: 22em; overflow-wrap: break-word; }
-table.dataTable tfoot input { width: 100%; min-width: 3em; box-sizing: border-box; }
-table.dataTable td { min-width: 4em; } details { min-width: 14em; }
+.scroll { overflow-x: auto; }
+table.results { border-collapse: collapse; }
+table.results th, table.results td { padding: .25em .5em; border-bottom: 1px solid #e2e8f0;
+  text-align: left; vertical-align: top; }
+table.results td { min-width: 4em; max-width: 22em; overflow-wrap: break-word; }
+table.results td.number { white-space: nowrap; text-align: right; }
+table.results thead th { cursor: pointer; position: sticky; top: 0; background: #f8fafc; }
+table.results thead th[aria-sort=ascending]::after { content: " \\25B2"; }
+table.results thead th[aria-sort=descending]::after { content: " \\25BC"; }
+table.results tfoot input { width: 100%; min-width: 3em; box-sizing: border-box; }
+details { min-width: 14em; } details summary { cursor: pointer; color: #0f172a; }
 dl { margin: .3em 0; } dt { font-weight: 600; } dd { margin: 0 0 .3em .8em; }
-table.dataTable td.dt-type-numeric { white-space: nowrap; }
-details summary { cursor: pointer; color: #0f172a; }
+"""
+#: Sorting and filtering of the page's table: a header sorts its column (numbers by their
+#: value, every digit, ``data-value``; texts alphabetically), a second click the other way; a
+#: box under a column keeps the rows whose cell contains its text; the count says how many show.
+SCRIPT = """
+(() => {
+  const table = document.querySelector("table.results"), body = table.tBodies[0];
+  const rows = [...body.rows], count = document.getElementById("shown");
+  const value = (row, i) => row.cells[i].dataset.value ?? row.cells[i].innerText.trim();
+  const order = (a, b) => (a !== "" && b !== "" && isFinite(a) && isFinite(b))
+    ? Number(a) - Number(b) : String(a).localeCompare(String(b));
+  [...table.tHead.rows[0].cells].forEach((th, i) => {
+    th.tabIndex = 0;
+    const sort = () => {
+      const up = th.getAttribute("aria-sort") !== "ascending";
+      [...table.tHead.rows[0].cells].forEach(h => h.removeAttribute("aria-sort"));
+      th.setAttribute("aria-sort", up ? "ascending" : "descending");
+      body.append(...rows.slice().sort((a, b) => order(value(a, i), value(b, i)) * (up ? 1 : -1)));
+    };
+    th.addEventListener("click", sort);
+    th.addEventListener("keydown", event => { if (event.key === "Enter") sort(); });
+  });
+  const boxes = [...table.tFoot.querySelectorAll("input")];
+  boxes.forEach(box => box.addEventListener("input", () => {
+    const words = boxes.map(b => b.value.trim().toLowerCase());
+    let shown = 0;
+    rows.forEach(row => {
+      row.hidden = !words.every((w, i) => !w || row.cells[i].innerText.toLowerCase().includes(w));
+      shown += !row.hidden;
+    });
+    count.textContent = shown;
+  }));
+})();
 """
 
 
@@ -124,10 +157,13 @@ def shown(text: str, column: str, row: dict[str, str]) -> str:
     return f"<details><summary>{head} …</summary>{html.escape(text)}</details>"
 
 
-@cache
-def _bundle() -> str:
-    """DataTables as itables ships it, to go inside a page (no network needed)."""
-    return generate_init_offline_itables_html(dt_bundle)
+def cell(text: str, column: str, row: dict[str, str]) -> str:
+    """A ``<td>`` of :func:`shown`; a number's keeps its every digit in ``data-value``, by which
+    its column sorts."""
+    if _number(text) is None:
+        return f"<td>{shown(text, column, row)}</td>"
+    return (f'<td class="number" data-value="{html.escape(text.strip())}">'
+            f"{shown(text, column, row)}</td>")
 
 
 def table_page(title: str, caption_html: str, csv_text: str, filename: str) -> str:
@@ -137,29 +173,34 @@ def table_page(title: str, caption_html: str, csv_text: str, filename: str) -> s
     rows = list(csv.DictReader(io.StringIO(csv_text)))
     given = list(csv.reader(io.StringIO(csv_text)))[0]
     names = columns(given)
-    cells = [[shown(row[n], n, row) for n in names] for row in rows]
+    lines = [[cell(row[n], n, row) for n in names] for row in rows]
     headers = [html.escape(header(n)) for n in names]
     if any(n in MORE for n in given):
-        cells = [line + [more(row)] for line, row in zip(cells, rows)]
+        lines = [line + [f"<td>{more(row)}</td>"] for line, row in zip(lines, rows)]
         headers.append("more")
-    frame = pd.DataFrame(cells, columns=headers, dtype=object)
-    table = to_html_datatable(frame, allow_html=True, paging=False, showIndex=False,
-                              column_filters="footer", connected=False, classes="display compact",
-                              display_logo_when_loading=False, order=[],
-                              # named for its file, not at random: a page is the same bytes
-                              # from run to run (the archive's are compared)
-                              table_id="itables_" + re.sub(r"\W", "_", filename),
-                              warn_on_unexpected_types=False)
+    head = "".join(f'<th scope="col">{h}</th>' for h in headers)
+    boxes = "".join(f'<td><input type="search" aria-label="rows whose {h} contains"></td>'
+                    for h in headers)
+    body = "\n".join(f"<tr>{''.join(line)}</tr>" for line in lines)
     data = base64.b64encode(csv_text.encode("utf-8")).decode("ascii")
     return f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>
+<html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>{html.escape(title)}</title>
 <style>{_STYLE}</style></head>
 <body>
-{_bundle()}
 <h1>{html.escape(title)}</h1>
 <div class="caption">{caption_html}</div>
-<div class="bar">{len(rows)} rows. <a download="{html.escape(filename)}"
+<div class="bar"><span id="shown">{len(rows)}</span> of {len(rows)} rows shown (a header
+sorts, a box under a column filters). <a download="{html.escape(filename)}"
 href="data:text/csv;base64,{data}">Download the CSV</a> (every digit).</div>
-{table}
+<div class="scroll"><table class="results">
+<thead><tr>{head}</tr></thead>
+<tbody>
+{body}
+</tbody>
+<tfoot><tr>{boxes}</tr></tfoot>
+</table></div>
+<script>{SCRIPT}</script>
 </body></html>
 """
