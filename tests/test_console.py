@@ -112,6 +112,7 @@ Logfile out/logs/c_ga.log:
 ================================================================================
 Shutting down, this might take some time.
 Error in rule c_ga:
+    message: None
     jobid: 3
     log: out/logs/c_ga.log (check log file(s) for error details)
 """
@@ -121,9 +122,10 @@ def test_a_failed_run_names_the_job_its_log_and_its_error(tmp_path):
     (tmp_path / "out/logs").mkdir(parents=True)
     trace = ["Traceback (most recent call last):"] + [f'  File "x.py", line {k}' for k in
                                                        range(20)] + ["ValueError: bad\x1b[31m"]
-    (tmp_path / "out/logs/c_ga.log").write_text("19:00:00 GA: 1 of 8\n" + "\n".join(trace))
+    (tmp_path / "out/logs/c_ga.log").write_text("19:00:00 GA: 1 of 8\n" + "\n".join(trace)
+                                                + "\njob CPU: 0.370 s\n")
     (tmp_path / "run.log").write_text(SNAKEMAKE_LOG)
-    text = run_summary.failure_text(tmp_path / "run.log", root=tmp_path)
+    text = run_summary.failure_text([tmp_path / "run.log"], root=tmp_path)
     lines = text.splitlines()
     assert lines[0] == "Job failed: rule c_ga (Paper C: genetic-algorithm tuning)"
     assert lines[1] == "  log: out/logs/c_ga.log"

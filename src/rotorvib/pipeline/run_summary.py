@@ -75,6 +75,8 @@ def success_text(results: str, papers, left_out=(), configfiles=(), config_args=
     return "\n".join(lines)
 
 
+#: The CPU line a job's log ends with (rotorvib.pipeline.job.CPU_LINE), which is no error.
+_CPU_LINE = re.compile(r"^job CPU: [0-9.]+ s$")
 _ERROR = re.compile(r"^Error in rule (\S+?):\n((?:[ \t]+\S.*\n?)*)", re.MULTILINE)
 _LOG = re.compile(r"^[ \t]+log: (.+?) \(check log file", re.MULTILINE)
 _MESSAGE = re.compile(r"^[ \t]+message: (.+)$", re.MULTILINE)
@@ -87,7 +89,8 @@ def failed_jobs(snakemake_log: str) -> list[dict]:
     for rule, details in _ERROR.findall(snakemake_log):
         logs = _LOG.search(details)
         message = _MESSAGE.search(details)
-        job = {"rule": rule, "message": message.group(1) if message else "",
+        said = message.group(1) if message else ""
+        job = {"rule": rule, "message": "" if said == "None" else said,
                "logs": logs.group(1).split(", ") if logs else []}
         if (key := (rule, tuple(job["logs"]))) not in seen:
             seen.add(key)
@@ -99,7 +102,8 @@ def error_lines(log_text: str, count: int = ERROR_LINES) -> list[str]:
     """The first ``count`` lines of the error a job's log ends with: from its traceback's
     first line (or, without one, the first line that names an error), its last line (the
     exception) after them where they stop short of it; the log's last lines if neither."""
-    lines = [line for line in log_text.splitlines() if line.strip()]
+    lines = [line for line in log_text.splitlines()
+             if line.strip() and not _CPU_LINE.match(line)]
     start = next((i for i, line in enumerate(lines) if line.startswith("Traceback")), None)
     if start is None:
         start = next((i for i, line in enumerate(lines)
@@ -112,15 +116,18 @@ def error_lines(log_text: str, count: int = ERROR_LINES) -> list[str]:
     return [one_line(line) for line in shown]
 
 
-def failure_text(snakemake_log: str | Path, root: str | Path = ".") -> str:
-    """The closing lines of a run that failed: each failed job (:func:`failed_jobs`) of the
-    Snakemake log ``snakemake_log``, its log (relative to ``root``, the working directory)
-    and the first lines of its error (:func:`error_lines`)."""
-    path = Path(snakemake_log)
-    text = path.read_text(encoding="utf-8", errors="replace") if path.is_file() else ""
+def failure_text(snakemake_logs, root: str | Path = ".") -> str:
+    """The closing lines of a run that failed: each failed job (:func:`failed_jobs`) of
+    Snakemake's log of the run ``snakemake_logs`` (a path, or the list of paths Snakemake
+    hands ``onerror``), its log (relative to ``root``, the working directory) and the first
+    lines of its error (:func:`error_lines`)."""
+    paths = [Path(snakemake_logs)] if isinstance(snakemake_logs, (str, Path)) else [
+        Path(p) for p in snakemake_logs]
+    text = "".join(p.read_text(encoding="utf-8", errors="replace") for p in paths if p.is_file())
+    where = ", ".join(one_line(str(p)) for p in paths) or "Snakemake's output above"
     jobs = failed_jobs(text)
     if not jobs:
-        return f"The run failed before or between jobs: see {one_line(str(path))}"
+        return f"The run failed before or between jobs: see {where}"
     lines = []
     for job in jobs:
         what = f" ({one_line(job['message'])})" if job["message"] else ""
@@ -133,5 +140,5 @@ def failure_text(snakemake_log: str | Path, root: str | Path = ".") -> str:
                 lines += [f"    {line}" for line in error] or ["    (the log is empty)"]
             else:
                 lines.append("    (no log was written)")
-    lines.append(f"Snakemake's log of the run: {one_line(str(path))}")
+    lines.append(f"Snakemake's log of the run: {where}")
     return "\n".join(lines)
