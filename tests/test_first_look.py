@@ -4,8 +4,10 @@ say: paper C whole, the comparison and the report, nothing of the papers it leav
 
 import re
 
+import pytest
+
 from conftest import ROOT
-from rotorvib.pipeline.config import check_files
+from rotorvib.pipeline.config import ConfigError, check_files
 
 FIRST_LOOK = ROOT / "config/first_look/config.yaml"
 FILES = ["--configfile", "config/config.yaml", "config/first_look/config.yaml"]
@@ -38,3 +40,14 @@ def test_the_first_look_plans_what_it_says(snakemake_here):
     comments = " ".join(line.lstrip("# ") for line in FIRST_LOOK.read_text().splitlines()
                         if line.startswith("#"))
     assert "What it leaves out: papers A and B" in comments
+
+
+def test_key_papers_names_papers_that_have_sections(tmp_path):
+    """Every section is kept where key ``papers`` is absent; a paper named without a section is
+    refused naming the key."""
+    every = check_files([ROOT / "config/config.yaml"], ROOT / "config/schema.yaml")
+    assert {"paper_a", "paper_b", "paper_c"} <= set(every) and "papers" not in every
+    wrong = tmp_path / "wrong.yaml"
+    wrong.write_text("papers: [c, e]\n")
+    with pytest.raises(ConfigError, match="config key 'papers': paper 'e' has no section"):
+        check_files([ROOT / "config/config.yaml", wrong], ROOT / "config/schema.yaml")

@@ -35,9 +35,11 @@ def report_command(results: str, configfiles=(), config_args=()) -> str:
 
 
 def left_out(papers, schema: dict) -> list[str]:
-    """The papers the configuration's ``schema`` admits under key ``papers`` that ``papers``
-    (those of the run) leaves out."""
-    return sorted(set(schema["properties"]["papers"]["items"]["enum"]) - set(papers))
+    """The papers whose sections (``paper_<p>``) the configuration's ``schema`` declares that
+    ``papers`` (those of the run) leaves out."""
+    declared = {key.removeprefix("paper_") for key in schema["properties"]
+                if key.startswith("paper_")}
+    return sorted(declared - set(papers))
 
 
 def _relative(path) -> str:
