@@ -58,8 +58,8 @@ def test_tests_and_benchmarks_need_only_the_test_extra_besides():
 
 
 #: Each lock's entries: a pin, the marker of the Pythons that have it (none: all) and its hashes.
-_ENTRY = re.compile(r"^([A-Za-z0-9][\w.-]*)==([^ ;]+)(?: ; (.+?))? \\\n((?:[ \t]+--hash=sha256:\w+.*\n?)+)",
-                    re.M)
+_ENTRY = re.compile(r"^([A-Za-z0-9][\w.-]*)==([^ ;]+)(?: ; (.+?))? \\\n"
+                    r"((?:[ \t]+--hash=sha256:\w+.*\n?)+)", re.M)
 
 
 def _lock(path: str, python: str) -> dict[str, str]:
