@@ -112,13 +112,14 @@ def test_each_supported_python_has_the_same_tested_pins_in_both_locks():
 
 def test_the_runtime_lock_holds_what_the_workflow_needs_and_no_development_tool():
     """environment.txt, which the README's run command installs, pins exactly the distributions
-    the package's own dependencies need (their metadata's requirements, followed), which cover
-    every third-party module the library and the workflow's scripts import; none of the test,
-    docs or slurm extras' tools (pytest, sphinx, ruff, playwright, ...) that the runtime does
-    not itself need."""
+    the package's own dependencies and the SLURM executor plugin (extra ``slurm``, the README's
+    cluster command) need (their metadata's requirements, followed), which cover every
+    third-party module the library and the workflow's scripts import; none of the test or docs
+    extras' tools (pytest, sphinx, ruff, playwright, ...) that the runtime does not itself
+    need."""
     python = "{}.{}".format(*sys.version_info)
     runtime = set(_lock("environment.txt", python))
-    needed = _closure(PROJECT["dependencies"])
+    needed = _closure(PROJECT["dependencies"] + PROJECT["optional-dependencies"]["slurm"])
     assert runtime == needed, (runtime - needed, needed - runtime)
     assert _imported("src", "workflow/scripts") <= runtime
     tools = {_name(r) for rs in PROJECT["optional-dependencies"].values() for r in rs}
