@@ -2,6 +2,8 @@
 # `snakemake -j2` builds everything (rule all); `snakemake -j2 archive` packs the results.
 from snakemake.utils import min_version
 
+from rotorvib.pipeline.run_summary import failure_text, left_out, success_text
+
 min_version("9.0")
 
 
@@ -43,6 +45,27 @@ rule all:
     # a message instead of the job's input list (every result: kilobytes) on the console
     message:
         "Every result of the three papers, the comparison and the report"
+
+
+# What the console says when the run ends (rotorvib.pipeline.run_summary): where the results are,
+# the papers the configuration leaves out and the report's command; or each failed job, its log
+# and the first lines of its error.
+onsuccess:
+    print(
+        success_text(
+            RESULTS_DIR,
+            PAPERS,
+            left_out=left_out(
+                PAPERS, load_yaml(WORKFLOW_ROOT / "config/schema.yaml")
+            ),
+            configfiles=workflow.config_settings.configfiles,
+            config_args=workflow.config_settings.config_args or (),
+        )
+    )
+
+
+onerror:
+    print(failure_text(log))
 
 
 # Every script rule's `code` parameter: the fingerprint of the library code it runs; then the

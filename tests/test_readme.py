@@ -80,7 +80,7 @@ def test_every_dataset_cites_its_paper_as_data_papers_yaml_does():
 
 
 def test_the_workflow_catalog_usage_runs(snakemake_here):
-    """.snakemake-workflow-catalog.yml: no conda or container deployment (environment.txt
+    """.snakemake-workflow-catalog.yml: no conda or container deployment (the set-up
     installs the project itself), a report, and its mandatory flags give a workflow that a dry
     run accepts."""
     catalog = load_yaml(ROOT / ".snakemake-workflow-catalog.yml")["usage"]

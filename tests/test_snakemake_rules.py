@@ -12,7 +12,7 @@ from rotorvib.pipeline.snakemake_rules import USED
 
 
 def test_the_pinned_snakemake_is_the_one_installed():
-    pinned = re.search(r"^snakemake==(\S+)$", (ROOT / "environment.txt").read_text(), re.M)
+    pinned = re.search(r"^snakemake==([^ ;]+)", (ROOT / "environment.txt").read_text(), re.M)
     assert pinned and snakemake.__version__ == pinned.group(1)
 
 

@@ -211,7 +211,7 @@ def test_a_dataset_made_under_another_configuration_is_refused(run_dir, tmp_path
 
 
 # The one lint declined on purpose: there is no conda environment (README, "Running on a SLURM
-# cluster"): environment.txt installs the project itself, which a Snakemake-built conda
+# cluster"): the set-up installs the project itself, which a Snakemake-built conda
 # environment cannot do.
 DECLINED_LINTS = {"Specify a conda environment or container for each rule."}
 

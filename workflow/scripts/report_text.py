@@ -22,7 +22,9 @@ def rows(path):
 table = rows(snakemake.input.comparison)
 discrepancies = rows(snakemake.input.discrepancies)
 claims = {(row["paper"], row["quantity"]): row["claim"] for row in rows(snakemake.input.paper_values)}
-papers = load_yaml(snakemake.input.papers)
+# the papers of the run (config key papers): those the comparison holds rows of
+papers = {letter: entry for letter, entry in load_yaml(snakemake.input.papers).items()
+          if letter in {row["paper"] for row in table}}
 out = snakemake.output
 figure_captions = {Path(path).stem: path for path in out.figure_captions}
 table_captions = {Path(path).stem: path for path in out.table_captions}

@@ -284,11 +284,20 @@ def validate_config(config: dict, schema: dict) -> dict:
 def check_config(config: dict, schema: dict) -> dict:
     """The workflow's configuration, validated: the schema (:func:`validate_config`), then the
     checks beyond it (:func:`rotorvib.pipeline.config_checks.problems`); :class:`ConfigError`
-    listing every problem otherwise."""
+    listing every problem otherwise. Where key ``papers`` names the papers of the run, the
+    section ``paper_<p>`` of each other paper is checked, then left out of the result: the
+    workflow makes the rules, results and comparison rows of the papers whose sections it
+    holds."""
     checked = validate_config(config, schema)
-    if found := problems(checked):
+    found = problems(checked)
+    sections = {key.removeprefix("paper_") for key in checked if key.startswith("paper_")}
+    papers = checked.get("papers", sorted(sections))
+    found += [f"config key 'papers': paper {p!r} has no section 'paper_{p}'"
+              for p in papers if p not in sections]
+    if found:
         raise ConfigError("invalid configuration:\n  " + "\n  ".join(found))
-    return checked
+    return {key: value for key, value in checked.items()
+            if not key.startswith("paper_") or key.removeprefix("paper_") in papers}
 
 
 def check_files(paths, schema_path: str | Path = "config/schema.yaml", overrides=()) -> dict:

@@ -22,7 +22,7 @@ import logging
 import os
 import sys
 
-from rotorvib.pipeline import pint_probe
+from rotorvib.pipeline import console, pint_probe
 
 gc.disable()
 
@@ -47,17 +47,21 @@ def start(log: str) -> None:
     """End the job's start-up: the objects made so far frozen, the collector on again, and
     standard error (warnings, a traceback, the library's progress messages with their time:
     rotorvib.io.progress) written to the job's ``log`` file, line by line, ending, as the
-    process exits, with the CPU it spent (:data:`CPU_LINE`).  xarray's probe for pint quantities
-    is answered without importing pint (:mod:`rotorvib.pipeline.pint_probe`)."""
+    process exits, with the CPU it spent (:data:`CPU_LINE`); the progress messages also go,
+    fewer and named after the job, to the console (:class:`rotorvib.pipeline.console.
+    ConsoleProgress`).  xarray's probe for pint quantities is answered without importing pint
+    (:mod:`rotorvib.pipeline.pint_probe`)."""
     pint_probe.skip()
     gc.freeze()
     gc.enable()
-    sys.stderr = open(log, "w", buffering=1)
+    terminal, sys.stderr = sys.stderr, open(log, "w", buffering=1)
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("%(asctime)s %(message)s", datefmt="%H:%M:%S"))
     library = logging.getLogger("rotorvib")       # the package's messages only, not others'
     library.addHandler(handler)
     library.setLevel(logging.INFO)
+    logging.getLogger("rotorvib.progress").addHandler(
+        console.ConsoleProgress(terminal, console.job_name(log)))
     atexit.register(_log_cpu)
 
 

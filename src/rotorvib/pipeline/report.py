@@ -280,13 +280,21 @@ def paper_entries(papers: dict) -> dict[str, dict[str, str]]:
     return papers
 
 
+def _papers(papers: dict) -> str:
+    """The count of ``papers`` in words: "three papers", "one paper"."""
+    count = len(papers)
+    word = {1: "one", 2: "two", 3: "three"}.get(count, str(count))
+    return f"{word} paper{'s' if count != 1 else ''}"
+
+
 def landing_page(table: list[dict], papers: dict[str, dict]) -> str:
     """The report's first page, short enough to read beside the rule graph: what was
     reproduced, the verdict totals in one line per group, and links to the summary (the
     verdict table, the findings, the discrepancy analysis) and to each paper
     (``papers``: letter -> {"title", ...})."""
     lines = [TITLE, "=" * len(TITLE), "",
-             "Every figure and table of three papers is regenerated from the equations with the "
+             f"Every figure and table of {_papers(papers)} is regenerated from the equations "
+             "with the "
              "parameters of ``config/config.yaml`` and set beside the paper's own numbers: "
              f"{len(table)} stated values and claims. Each figure's caption states the rows "
              "about it.", "",
@@ -306,7 +314,7 @@ def summary_text(table: list[dict], claims: dict[tuple[str, str], str], papers: 
     each paper, the discrepancy totals, the findings and the papers
     (``papers``: letter -> {"citation", "summary"})."""
     lines = ["Summary", "=======", "",
-             f"{len(table)} values and claims of three papers compared with their "
+             f"{len(table)} values and claims of {_papers(papers)} compared with their "
              "reproduction.", "",
              "Verdict totals", "--------------", "", rst_text(verdict_definitions()), ""]
     lines += totals_table(table)
