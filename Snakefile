@@ -35,7 +35,8 @@ include: "workflow/rules/archive.smk"
 
 
 # The report's landing page is written from the comparison by rule report_text (report.smk).
-report: REPORT_LANDING
+# (A module's is its caller's: Snakemake skips this line in a module, docs/user-guide.md.)
+report: in_working_folder(REPORT_LANDING)
 
 
 rule all:
@@ -60,6 +61,12 @@ onsuccess:
             ),
             configfiles=workflow.config_settings.configfiles,
             config_args=workflow.config_settings.config_args or (),
+            root=WORKING_FOLDER,
+            elsewhere=(
+                None
+                if WORKING_FOLDER == WORKFLOW_ROOT
+                else (WORKING_FOLDER, WORKFLOW_ROOT / "profiles/report.css")
+            ),
         )
     )
 

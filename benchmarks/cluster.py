@@ -1,5 +1,5 @@
 """Benchmark of the cluster path: the reduced workflow from scratch through the shipped SLURM
-profile (``workflow/profiles/slurm``) against ``snakemake -j2`` on this machine, one after the
+profile (``profiles/slurm``) against ``snakemake -j2`` on this machine, one after the
 other; with ``--shards N`` also both ways with paper B's batch studies in N shards each, whose
 shards the profile sends to SLURM.
 
@@ -26,7 +26,7 @@ from pathlib import Path
 from benchmarks.reduced import run_reduced
 
 FOLDER = Path("results/cluster_bench")
-WAYS = {"local": ["-j2"], "slurm": ["--workflow-profile", "workflow/profiles/slurm"]}
+WAYS = {"local": ["-j2"], "slurm": ["--workflow-profile", "profiles/slurm"]}
 
 
 def run_case(name: str, way: str, shards: int) -> tuple[float, int]:

@@ -31,7 +31,7 @@ def slurm_cluster(tmp_path_factory):
         subprocess.run([str(CLUSTER), "stop", str(where)], timeout=120)
 
 
-SLURM_PROFILE = ROOT / "workflow/profiles/slurm/config.yaml"
+SLURM_PROFILE = ROOT / "profiles/slurm/config.yaml"
 #: The sharded study the cluster test rebuilds, and its shards
 SHARDED_STUDY = "paper_b/datasets/balance_beta.nc"
 SHARDS = [f"paper_b/shards/balance_beta.{k}-of-3.nc" for k in range(3)]
@@ -51,7 +51,7 @@ def slurm_record(job_id: str, env: dict) -> str:
 
 def test_the_shipped_slurm_profile_runs_on_a_real_cluster(runs, tmp_path, slurm_cluster):
     """A sharded study, datasets of papers A and C and the comparison are removed from the
-    sharded reduced run (tests/workflow_runs.py) and rebuilt through workflow/profiles/slurm as
+    sharded reduced run (tests/workflow_runs.py) and rebuilt through profiles/slurm as
     the README says: the study's three shards as SLURM jobs (side by side where the node has
     room) with the threads the profile sets, and nothing else; the gathering job, the other
     datasets, their figures and values and the comparison where Snakemake runs. Every result
@@ -66,7 +66,7 @@ def test_the_shipped_slurm_profile_runs_on_a_real_cluster(runs, tmp_path, slurm_
     for path in [*made.values(), *(f"results/{name}" for name in [SHARDED_STUDY, *SHARDS]),
                  "results/comparison.csv"]:
         (work / path).unlink()
-    run = snakemake(work, "--workflow-profile", "workflow/profiles/slurm", *REDUCED_SHARDED,
+    run = snakemake(work, "--workflow-profile", "profiles/slurm", *REDUCED_SHARDED,
                     env=slurm_cluster, timeout=900)
     log = run.stdout + run.stderr
     submitted = submitted_jobs(log)

@@ -9,6 +9,7 @@ import io
 import logging
 import subprocess
 import sys
+from pathlib import Path
 
 from conftest import ROOT
 from rotorvib.pipeline import console, run_summary
@@ -93,6 +94,24 @@ def test_the_end_of_a_run_says_where_its_results_are(tmp_path):
     assert "Left out by this configuration (key 'papers'): paper A, paper B" in text
     assert ("snakemake --report out/report.html --configfile config/config.yaml "
             "'my file.yaml'") in text
+
+
+def test_a_run_outside_the_workflows_folder_gets_a_report_command_that_says_where(tmp_path):
+    """From a module's caller or with ``--directory``, the report's command names the working
+    folder, the stylesheet (where the workflow's folder has it: a workflow fetched from a URL
+    may not) and the configuration files by their absolute paths, so that it works from
+    whichever folder the user is in."""
+    css = tmp_path / "rotorvib/profiles/report.css"
+    css.parent.mkdir(parents=True)
+    css.write_text("")
+    folder = tmp_path / "analysis"
+    command = run_summary.report_command("results", ["config/my.yaml"],
+                                         elsewhere=(folder, css))
+    assert command == (f"snakemake --report results/report.html --directory {folder} "
+                       f"--report-stylesheet {css} --configfile "
+                       f"{(Path.cwd() / 'config/my.yaml').resolve()}")
+    missing = run_summary.report_command("results", elsewhere=(folder, tmp_path / "none.css"))
+    assert missing == f"snakemake --report results/report.html --directory {folder}"
 
 
 def test_the_papers_left_out_come_from_the_schema():

@@ -29,7 +29,7 @@ def report(run_dir, tmp_path_factory) -> Path:
 
 
 #: Every profile the repository ships, as a command names it (none: the default profile).
-PROFILES = {"default": [], "slurm": ["--workflow-profile", "workflow/profiles/slurm"]}
+PROFILES = {"default": [], "slurm": ["--workflow-profile", "profiles/slurm"]}
 
 
 def test_the_landing_page_reads_from_its_first_line(report, browser):

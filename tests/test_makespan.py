@@ -81,7 +81,7 @@ def test_the_slurm_profile_sets_the_threads_of_every_batch_rule_and_no_other():
 
     from rotorvib.pipeline.slurm_profile import CLUSTER_THREADS, batch_rules, written
 
-    path = ROOT / "workflow/profiles/slurm/config.yaml"
+    path = ROOT / "profiles/slurm/config.yaml"
     rules = batch_rules(ROOT / "workflow/rules")
     assert written(path.read_text(), rules) == path.read_text()
     threads = yaml.safe_load(path.read_text())["set-threads"]

@@ -6,6 +6,7 @@ reads of its own (the schema, the papers' data, the Snakefile) is found beside i
 in the caller's folder."""
 
 import os
+import re
 import subprocess
 
 import pytest
@@ -174,3 +175,21 @@ def test_a_modules_callers_command_line_is_read_as_a_file_is(tmp_path):
                              "--config", "rotorvib={results: out, results: other}")
     assert run.returncode != 0
     assert "--config rotorvib:1:16: duplicate key 'results'" in run.stdout + run.stderr
+
+
+def test_the_docs_name_only_refs_that_exist():
+    """Every ``--tag``, ``--branch`` or ``tag=``/``branch=`` the docs give snakedeploy or a
+    module is a ref of the repository (they named a tag v0.1.0 there never was)."""
+    refs = set()
+    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        text = page.read_text(encoding="utf-8")
+        refs |= {(a or c, b or d) for a, b, c, d in re.findall(
+            r"--(tag|branch)[ =]([\w./-]+)|\b(tag|branch)=\"([\w./-]+)\"", text)}
+    assert ("branch", "main") in refs
+    for kind, name in refs:
+        candidates = ([f"refs/tags/{name}"] if kind == "tag"
+                      else [f"refs/heads/{name}", f"refs/remotes/origin/{name}"])
+        assert any(subprocess.run(["git", "rev-parse", "--verify", "--quiet", ref], cwd=ROOT,
+                                  capture_output=True, check=False).returncode == 0
+                   for ref in candidates), (
+            f"the docs name {kind} {name!r}, which the repository does not have")

@@ -1,4 +1,4 @@
-"""The report stylesheet (workflow/report/style.css) overrides a view of the pinned Snakemake's
+"""The report stylesheet (profiles/report.css) overrides a view of the pinned Snakemake's
 report by its classes: it fails here, not silently in a browser, when Snakemake's template
 changes them."""
 
@@ -13,7 +13,7 @@ TEMPLATE = Path(snakemake.__file__).parent / "report/html_reporter/template/comp
 
 
 def test_the_stylesheet_selects_snakemakes_content_view():
-    css = (ROOT / "workflow/report/style.css").read_text()
+    css = (ROOT / "profiles/report.css").read_text()
     selectors = re.findall(r"^([.\w-]+(?:\.[\w-]+)*)\s*\{", css, flags=re.MULTILINE)
     assert selectors, "no rule in the stylesheet"
     template = (TEMPLATE / "content.js").read_text()
@@ -26,10 +26,11 @@ def test_the_stylesheet_selects_snakemakes_content_view():
 
 def test_every_shipped_profile_ships_the_stylesheet():
     """A --workflow-profile replaces the default profile: each shipped one names the
-    stylesheet, so that the report looks the same whichever is given."""
-    profiles = sorted((ROOT / "profiles").glob("*/config.yaml")) + sorted(
-        (ROOT / "workflow/profiles").glob("*/config.yaml"))
-    assert len(profiles) >= 2
+    stylesheet, from its own folder (Snakemake finds a profile's path there first), so that
+    the report looks the same whichever is given, and in a deployment, which copies
+    profiles/ whole."""
+    profiles = sorted((ROOT / "profiles").glob("*/config.yaml"))
+    assert {p.parent.name for p in profiles} == {"default", "slurm"}
     for path in profiles:
-        assert re.search(r"^report-stylesheet:\s*workflow/report/style.css\s*$",
-                         path.read_text(), re.MULTILINE), path
+        named = re.search(r"^report-stylesheet:\s*(\S+)\s*$", path.read_text(), re.MULTILINE)
+        assert named and (path.parent / named.group(1)).resolve() == ROOT / "profiles/report.css"

@@ -35,10 +35,21 @@ from rotorvib.pipeline.snakemake_rules import (
 # papers' data are read from there, so that it runs from another working directory
 # (`--directory`) or as a module of another workflow.
 WORKFLOW_ROOT = Path(str(workflow.current_basedir)).resolve().parents[1]
+# The run's working folder (`--directory`, or the caller's), as Snakemake reads the rules in it:
+# when the run ends (onsuccess), Snakemake is back in the folder the command started in.
+WORKING_FOLDER = Path.cwd().resolve()
 
 # Snakemake's rendering of the report's words reads the workflow's docutils.conf (no include,
 # no raw HTML) wherever it runs, a caller's folder included (rotorvib.pipeline.report_pages).
 read_docutils_settings_last(WORKFLOW_ROOT / "docutils.conf")
+
+
+def in_working_folder(path):
+    """A file of this run (under Snakemake's working folder: the caller's, for a module or
+    ``--directory``) as an absolute path, for the report's texts, which Snakemake reads
+    relative to the rule file's folder, the workflow's own (there, a module's report failed to
+    load its captions, or took them from the module's clone)."""
+    return str(WORKING_FOLDER / path)
 
 
 def source(relative):
@@ -117,7 +128,7 @@ def reproduced_file(paper):
 
 
 # Scheduling: every job runs one thread (a batch study's second thread gains less than a second
-# job beside it on a few cores; workflow/profiles/slurm gives paper B's batch studies more), and
+# job beside it on a few cores; profiles/slurm gives paper B's batch studies more), and
 # long jobs start first so that short ones fill the gaps at the end (`priority`): paper B's
 # genetic algorithm, the longest job (on an empty cache it compiles the engine, and an engine
 # job started meanwhile waits for it, rotorvib.methods.numba_cache), beside its symbolic checks,
@@ -127,7 +138,7 @@ def reproduced_file(paper):
 # rule graph); then every other job that computes; then the figures and tables (no priority).
 BESIDE_THE_COMPILE, LONGEST_CHAIN, COMPUTES = 3, 2, 1
 
-# Where a job runs under a cluster executor (workflow/profiles/slurm): where Snakemake runs
+# Where a job runs under a cluster executor (profiles/slurm): where Snakemake runs
 # (`localrule: True`) unless it is a shard of one of paper B's batch studies, or its Pareto
 # study when those are sharded. A cluster job costs two Snakemake start-ups and a status check
 # (python -m benchmarks.cluster), more than most jobs take at the paper's sizes (python -m
@@ -304,7 +315,7 @@ def report_entries():
                 entries[shown(paper, f"{name}{Path(source).suffix}")] = (
                     source,
                     {
-                        "caption": f"../../{caption_file(paper, name, kind)}",
+                        "caption": in_working_folder(caption_file(paper, name, kind)),
                         "category": named[
                             "Comparison" if paper == "all" else f"Paper {paper.upper()}"
                         ],

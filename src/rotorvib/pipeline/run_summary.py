@@ -23,12 +23,25 @@ _PAPER_FOLDERS = (("figures", "figures (PNG and SVG)"), ("tables", "tables"),
                   ("datasets", "datasets (netCDF)"))
 
 
-def report_command(results: str, configfiles=(), config_args=()) -> str:
+def report_command(results: str, configfiles=(), config_args=(), elsewhere=None) -> str:
     """The command that builds the report of a run of ``results`` (folder) made with the
-    ``--configfile`` files ``configfiles`` and the ``--config`` entries ``config_args``."""
+    ``--configfile`` files ``configfiles`` and the ``--config`` entries ``config_args``.
+
+    ``elsewhere``, for a run whose working folder is not the workflow's own (a module's caller,
+    ``--directory``): ``(working folder, the workflow's stylesheet)``. The command then names
+    both: the folder, so that it runs where the results are, whichever folder the user is in,
+    and the stylesheet and configuration files, by their absolute paths (Snakemake finds the
+    default profile, and the stylesheet it names, from the folder the command starts in, not
+    the working folder)."""
     words = ["snakemake", "--report", f"{results}/report.html"]
+    if elsewhere is not None:
+        folder, stylesheet = elsewhere
+        words += ["--directory", str(folder)]
+        if Path(stylesheet).is_file():
+            words += ["--report-stylesheet", str(stylesheet)]
     if configfiles:
-        words += ["--configfile", *map(_relative, configfiles)]
+        named = _relative if elsewhere is None else (lambda path: str(Path(path).resolve()))
+        words += ["--configfile", *map(named, configfiles)]
     if config_args:
         words += ["--config", *config_args]
     return shlex.join(words)
@@ -51,10 +64,11 @@ def _relative(path) -> str:
 
 
 def success_text(results: str, papers, left_out=(), configfiles=(), config_args=(),
-                 root: str | Path = ".") -> str:
+                 root: str | Path = ".", elsewhere=None) -> str:
     """The closing lines of a run that succeeded: what the folder ``results`` (relative to
     ``root``, the working directory) holds of the papers ``papers`` ("a", "b", "c"), the
-    papers the configuration ``left_out`` and how to build the report (:func:`report_command`)."""
+    papers the configuration ``left_out`` and how to build the report (:func:`report_command`,
+    given ``elsewhere``)."""
     base = Path(root)
     lines = ["Where the results are:"]
     found = [(f"{results}/{name}", what) for name, what in (
@@ -73,7 +87,7 @@ def success_text(results: str, papers, left_out=(), configfiles=(), config_args=
         lines.append("Left out by this configuration (key 'papers'): "
                      + ", ".join(f"paper {p.upper()}" for p in sorted(left_out)))
     lines.append("Build the report, then open it in a browser:")
-    lines.append("  " + one_line(report_command(results, configfiles, config_args)))
+    lines.append("  " + one_line(report_command(results, configfiles, config_args, elsewhere)))
     return "\n".join(lines)
 
 

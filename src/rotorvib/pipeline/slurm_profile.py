@@ -50,9 +50,10 @@ def written(profile_text: str, rules: list[str]) -> str:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Rewrite the SLURM profile of the workflow folder given (``workflow`` by default)."""
+    """Rewrite the SLURM profile (``profiles/slurm`` beside the workflow folder given,
+    ``workflow`` by default)."""
     workflow = Path((argv if argv is not None else sys.argv[1:] or ["workflow"])[0])
-    profile = workflow / "profiles/slurm/config.yaml"
+    profile = workflow.resolve().parent / "profiles/slurm/config.yaml"
     profile.write_text(written(profile.read_text(), batch_rules(workflow / "rules")))
 
 
