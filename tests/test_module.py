@@ -104,6 +104,12 @@ def test_snakedeploys_layout_runs_the_workflow_as_a_module(tmp_path):
     (deployed / "config/config.yaml").write_text((repo / "config/config.yaml").read_text())
     plan = _snakemake(deployed, "--summary", "all", repo=repo)   # every output, its rule and status
     assert "results/paper_c/figures/fig5.png\t" in plan.stdout and "\tc_ga\t" in plan.stdout
+    assert "workflow specific profile profiles/default" in plan.stdout + plan.stderr
+    # both profiles deployed, each naming the stylesheet the deployment carries
+    assert (deployed / "profiles/report.css").read_bytes() == (ROOT / "profiles/report.css").read_bytes()
+    cluster = _snakemake(deployed, "--summary", "--workflow-profile", "profiles/slurm", "all",
+                         repo=repo)
+    assert "workflow specific profile profiles/slurm" in cluster.stdout + cluster.stderr
     assert not (repo / "results").exists()
 
 
