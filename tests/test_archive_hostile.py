@@ -262,10 +262,10 @@ def _six_hundred(tmp_path):
     return archive, root
 
 
-@pytest.mark.parametrize("obstacle", ["folder", "link on the way", "link in place"])
-def test_an_obstacle_in_the_clone_is_found_before_the_first_move(tmp_path, capsys, obstacle):
-    """A folder where a file goes, or a symbolic link on the way or in a file's place (the
-    audit: 503-543 files left, tracebacks): refused in one line naming it; nothing moves."""
+def _obstacle(tmp_path, obstacle: str):
+    """The six-hundred-file archive and its clone, with ``obstacle`` at ``results/d300``: a
+    folder where a file goes, or a symbolic link on the way or in a file's place, to a folder
+    ``elsewhere``; ``(archive, root, elsewhere)``."""
     archive, root = _six_hundred(tmp_path)
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
@@ -276,6 +276,14 @@ def test_an_obstacle_in_the_clone_is_found_before_the_first_move(tmp_path, capsy
     else:
         (root / "results/d300").mkdir()
         (root / "results/d300/f.txt").symlink_to(elsewhere / "f.txt")
+    return archive, root, elsewhere
+
+
+@pytest.mark.parametrize("obstacle", ["folder", "link on the way", "link in place"])
+def test_an_obstacle_in_the_clone_is_found_before_the_first_move(tmp_path, capsys, obstacle):
+    """A folder where a file goes, or a symbolic link on the way or in a file's place (the
+    audit: 503-543 files left, tracebacks): refused in one line naming it; nothing moves."""
+    archive, root, elsewhere = _obstacle(tmp_path, obstacle)
     before = _tree(root)
     _refused(archive, root, capsys, str(root / "results/d300"))
     assert _tree(root) == before and _tree(elsewhere) == {}
@@ -287,15 +295,8 @@ def test_a_link_raced_in_after_the_checks_is_never_followed(tmp_path, capsys, mo
     """A link put on the way, or in a file's place, between the checks and the moves (the
     checks are skipped here, as a racer would win): the moves open each folder without
     following a link, so the link is refused or replaced, never written through; undone."""
-    archive, root = _six_hundred(tmp_path)
-    elsewhere = tmp_path / "elsewhere"
-    elsewhere.mkdir()
+    archive, root, elsewhere = _obstacle(tmp_path, raced)
     monkeypatch.setattr(archive_restore, "_destination_problem", lambda root, relative: None)
-    if raced == "link on the way":
-        (root / "results/d300").symlink_to(elsewhere)
-    else:
-        (root / "results/d300").mkdir()
-        (root / "results/d300/f.txt").symlink_to(elsewhere / "f.txt")
     before = _tree(root)
     _refused(archive, root, capsys, str(root / "results/d300"), "the clone is as it was")
     assert _tree(root) == before and _tree(elsewhere) == {}
