@@ -50,7 +50,8 @@ rule all:
 
 # What the console says when the run ends (rotorvib.pipeline.run_summary): where the results are,
 # the papers the configuration leaves out and the report's command; or each failed job, its log
-# and the first lines of its error.
+# and the first lines of its error. Both read the run's working folder (WORKING_FOLDER, common.smk):
+# when they run, Snakemake is back in the folder the command started in.
 onsuccess:
     print(
         success_text(
@@ -72,7 +73,7 @@ onsuccess:
 
 
 onerror:
-    print(failure_text(log))
+    print(failure_text(log, root=WORKING_FOLDER))
 
 
 # Every script rule's `code` parameter: the fingerprint of the library code it runs; then the
