@@ -36,13 +36,13 @@ include: "workflow/rules/archive.smk"
 
 # The report's landing page is written from the comparison by rule report_text (report.smk).
 # (A module's is its caller's: Snakemake skips this line in a module, docs/user-guide.md.)
-report: in_working_folder(REPORT_LANDING)
+report: in_working_folder(PLAN.landing)
 
 
 rule all:
     default_target: True
     input:
-        all_results(),
+        PLAN.all_results(),
     # a message instead of the job's input list (every result: kilobytes) on the console
     message:
         "Every result of the three papers, the comparison and the report"
@@ -76,7 +76,9 @@ onerror:
     print(failure_text(log, root=WORKING_FOLDER))
 
 
-# Every script rule's `code` parameter: the fingerprint of the library code it runs; then the
+# The rules for rule authors, once every rule is read (rotorvib.pipeline.plan.rule_problems);
+# every script rule's `code` parameter: the fingerprint of the library code it runs; then the
 # configuration hash each of its input datasets must carry.
+check_rules()
 add_code_fingerprints(workflow.rules)
 add_input_checks(workflow.rules)

@@ -9,7 +9,7 @@ joins each job's outputs, links a job to the jobs that made its inputs, and prin
   cores can shorten, and its share of the total;
 - the simulated makespan on 2, 4, 8, 16 and 64 cores (or ``--cores``): jobs started as their
   inputs are made, longest remaining chain first, with the durations measured; a batch job (a
-  rule declaring ``threads: BATCH_THREADS``, found in the rule files by
+  rule declaring ``resources: batch=1``, as Snakemake reads the rules:
   :func:`rotorvib.pipeline.slurm_profile.batch_rules`) gets half the cores, as
   the workflow gives it, and takes ``T (s + (1 - s) / threads)`` for its recorded time ``T``
   (Amdahl's law, ``s`` the serial share, ``--serial``), every other job one core.
@@ -40,7 +40,6 @@ from pathlib import Path
 from rotorvib.pipeline.slurm_profile import batch_rules
 
 METADATA = Path(".snakemake/metadata")
-RULES = Path("workflow/rules")
 
 
 @dataclass
@@ -196,7 +195,7 @@ def main(argv=None) -> None:
     if not jobs:
         raise SystemExit(f"no job records under {args.results}/: run the workflow first")
     total = sum(job.duration for job in jobs)
-    batch = set(batch_rules(RULES))
+    batch = set(batch_rules(Path.cwd()))
     length, chain = critical_chain(jobs)
     print(f"{len(jobs)} jobs under {args.results}/, total job time {total:.1f} s")
     print(f"critical chain, every job on one thread: {length:.1f} s = {length / total:.2f} of "

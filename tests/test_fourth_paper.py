@@ -49,6 +49,9 @@ rule d_response:
         dataset("d", "response"),
     log:
         logs("d_response"),
+    benchmark:
+        benchmarks("d_response")
+    priority: COMPUTES
     localrule: True
     params:
         omega=D["omega"],

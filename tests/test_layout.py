@@ -56,75 +56,43 @@ def test_modules_stay_small(name):
     assert len(MODULES[name].read_text().splitlines()) <= 430
 
 
-RULE_HEAD = re.compile(r"^rule (\w+):\n((?:[ #].*\n|\n)*)", re.M)
-RULES_TEXT = "\n".join(
-    p.read_text() for p in sorted((SRC.parent / "workflow/rules").glob("*.smk"))) + "\n"
-COMMON_TEXT = (SRC.parent / "workflow/rules/common.smk").read_text()
+@pytest.fixture(scope="module")
+def declared():
+    """Every rule as Snakemake reads it (its rule objects, as the plan reads them), by name."""
+    from rotorvib.pipeline.slurm_profile import declared_rules
+
+    return {rule.name: rule for rule in declared_rules(SRC.parent)}
 
 
-def batch_blocks() -> dict[str, str]:
-    """Paper B's batch studies' rules, written once in a loop over its ``B_BATCH`` table
-    (paper_b.smk): for each study ``S``, rule ``S`` (where Snakemake runs) and ``S_shard`` (a
-    cluster job), each the loop's body with the study's priority (``batch_study``'s default
-    unless its entry gives one) and its placement."""
-    loop = re.search(r"^for _rule, _study in B_BATCH\.items\(\):\n((?:[ #].*\n|\n)*)",
-                     RULES_TEXT, re.M).group(1)
-    body = "".join(line[8:] + "\n" for line in loop.splitlines() if line.startswith(" " * 12))
-    default = re.search(r"^    priority=(\w+),$", COMMON_TEXT, re.M).group(1)
-    blocks = {}
-    for name, entry in re.findall(r'^    "(\w+)": batch_study\(\n((?:        .*\n)*)    \),$',
-                                  RULES_TEXT, re.M):
-        priority = re.search(r"^        priority=(\w+),$", entry, re.M)
-        own = body.replace('priority: _study["priority"]',
-                           f"priority: {priority.group(1) if priority else default}")
-        blocks[name] = own.replace("localrule: not _sharded", "localrule: True")
-        blocks[f"{name}_shard"] = own.replace("    localrule: not _sharded\n", "")
-    return blocks
+def test_the_rules_keep_the_rules_for_rule_authors(declared):
+    """rotorvib.pipeline.plan.rule_problems holds for the workflow's rules (Snakemake also
+    refuses to plan otherwise): every rule that writes a dataset has a benchmark and a priority."""
+    from rotorvib.pipeline.plan import COMPUTES, rule_problems
+
+    assert rule_problems(list(declared.values())) == []
+    computes = [r for r in declared.values() if any(o.endswith(".nc") for o in r.outputs)]
+    assert len(computes) > 20 and all(r.benchmark and r.priority >= COMPUTES for r in computes)
 
 
-def rule_blocks() -> dict[str, str]:
-    """Every rule of the workflow written with a name (``rule X:``, and paper B's batch
-    studies): its text. The figure rules, named in a loop (figures.smk), are not among them."""
-    return dict(RULE_HEAD.findall(RULES_TEXT)) | batch_blocks()
+def test_only_the_shards_of_batch_studies_are_cluster_jobs(declared):
+    """Every rule runs where Snakemake runs but the shards of paper B's batch studies, and its
+    Pareto study when those are sharded (workflow/rules/paper_b.smk)."""
+    from rotorvib.pipeline.slurm_profile import declared_rules
+
+    cluster = {name for name, rule in declared.items() if not rule.local}
+    assert cluster == {name for name in declared if name.endswith("_shard")}
+    assert len(cluster) == 6 and all(declared[name].batch for name in cluster)
+    sharded = declared_rules(SRC.parent, "--configfile", "tests/config/three_shards.yaml")
+    assert {rule.name for rule in sharded if not rule.local} == cluster | {"b_pareto"}
 
 
-def workflow_rules() -> set[str]:
-    """Every rule name of the workflow."""
-    return set(rule_blocks())
-
-
-def test_only_the_shards_of_batch_studies_are_cluster_jobs():
-    """The placement stated in workflow/rules/common.smk: every rule runs where Snakemake runs
-    but the shards of paper B's batch studies, and its Pareto study when those are sharded."""
-    blocks = rule_blocks()
-    placed = {name: re.findall(r"^    localrule: (.+)$", block, re.M)
-              for name, block in blocks.items()}
-    cluster = {name for name, local in placed.items() if not local}
-    assert cluster == {name for name in blocks if name.endswith("_shard")} and len(cluster) == 6
-    assert placed["b_pareto"] == ['B["shards"] == 1']
-    assert all(local == ["True"] for name, local in placed.items()
-               if name not in cluster | {"b_pareto"}), placed
-
-
-def test_every_job_that_computes_starts_before_the_figures_and_tables():
-    """Long jobs first (workflow/rules/common.smk): a rule whose CPU is measured (``benchmark:``:
-    it computes a dataset or a check) declares a priority; one without (it draws or tabulates)
-    only if it is on the longest chain."""
-    written = rule_blocks()
-    assert len(written) > 20
-    for name, block in written.items():
-        if "benchmark:" in block:
-            assert "priority:" in block, name
-        else:
-            assert "priority:" not in block or "priority: LONGEST_CHAIN" in block, name
-
-
-def test_every_job_the_longest_chain_waits_for_shares_its_priority(snakemake_here):
-    """The longest chain (workflow/rules/common.smk) starts as early as its inputs allow: every
+def test_every_job_the_longest_chain_waits_for_shares_its_priority(snakemake_here, declared):
+    """The longest chain (rotorvib.pipeline.plan) starts as early as its inputs allow: every
     rule that paper B's discrepancy analysis needs, directly or through other rules (its
     ancestors in Snakemake's rule graph), declares the chain's priority or the first jobs'
-    (the genetic algorithm); one with less waits behind
-    other jobs and holds the chain back."""
+    (the genetic algorithm); one with less waits behind other jobs and holds the chain back."""
+    from rotorvib.pipeline.plan import BESIDE_THE_COMPILE, LONGEST_CHAIN
+
     graph = snakemake_here("--rulegraph")
     assert graph.returncode == 0, graph.stderr
     label = dict(re.findall(r'^\s*(\d+)\[label = "(\w+)"', graph.stdout, re.M))
@@ -134,11 +102,8 @@ def test_every_job_the_longest_chain_waits_for_shares_its_priority(snakemake_her
         frontier = {a for a, b in needs if b in frontier} - upstream
         upstream |= frontier
     assert {"b_ga", "b_boundary", "b_ga_law", "b_reproduced_values"} <= upstream
-    blocks = rule_blocks()
-    declared = {name: re.findall(r"^    priority: (\w+)$", blocks[name], re.M)
-                for name in upstream}
-    waiting = {name for name, priority in declared.items()
-               if priority not in (["LONGEST_CHAIN"], ["BESIDE_THE_COMPILE"])}
+    waiting = {name for name in upstream
+               if declared[name].priority not in (LONGEST_CHAIN, BESIDE_THE_COMPILE)}
     assert not waiting
 
 

@@ -53,9 +53,9 @@ def test_list_scheduling_starts_the_longest_chain_first(metadata, cores, makespa
 
 
 def test_batch_jobs_take_half_the_cores_by_amdahls_law(metadata):
-    """A batch job (a rule that declares BATCH_THREADS) on 8 cores runs on 4 threads: its
-    recorded 4 s becomes 4 (0.1 + 0.9 / 4) = 1.3 s, and it takes 4 cores; other jobs keep
-    theirs. The rule files name the batch rules, with the rules that use them."""
+    """A batch job (a rule that declares ``resources: batch=1``) on 8 cores runs on 4 threads:
+    its recorded 4 s becomes 4 (0.1 + 0.9 / 4) = 1.3 s, and it takes 4 cores; other jobs keep
+    theirs. Snakemake's rules name the batch rules, with the rules that use them."""
     from benchmarks.makespan import on_cores
     from rotorvib.pipeline.slurm_profile import batch_rules
 
@@ -67,14 +67,14 @@ def test_batch_jobs_take_half_the_cores_by_amdahls_law(metadata):
     assert simulated_makespan(list(scaled.values()), 8) == pytest.approx(5.0)
     # on 2 cores a batch job takes one thread, as recorded
     assert [j.duration for j in on_cores(jobs, 2, {"a"}, 0.1)] == [j.duration for j in jobs]
-    found = set(batch_rules(ROOT / "workflow/rules"))
+    found = set(batch_rules(ROOT))
     assert {"b_ga", "b_ga_shard", "b_table1_runs", "b_zeta_inversion"} <= found
     assert "comparison" not in found and "b_time_responses" not in found
 
 
 def test_the_slurm_profile_sets_the_threads_of_every_batch_rule_and_no_other():
     """The SLURM profile's ``set-threads`` block is what rotorvib.pipeline.slurm_profile writes
-    from the rule files: exactly the rules that declare ``threads: BATCH_THREADS``, each with
+    from Snakemake's rules: exactly the rules that declare ``resources: batch=1``, each with
     more than one thread (a cluster job's step evaluates a rule's threads with its own cores,
     and only a ``--set-threads`` crosses into it)."""
     import yaml
@@ -82,7 +82,7 @@ def test_the_slurm_profile_sets_the_threads_of_every_batch_rule_and_no_other():
     from rotorvib.pipeline.slurm_profile import CLUSTER_THREADS, batch_rules, written
 
     path = ROOT / "profiles/slurm/config.yaml"
-    rules = batch_rules(ROOT / "workflow/rules")
+    rules = batch_rules(ROOT)
     assert written(path.read_text(), rules) == path.read_text()
     threads = yaml.safe_load(path.read_text())["set-threads"]
     assert sorted(threads) == rules and set(threads.values()) == {CLUSTER_THREADS} != {1}

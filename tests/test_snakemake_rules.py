@@ -34,14 +34,19 @@ def test_the_workflow_modifier_still_says_whether_a_module_has_its_own_config():
     assert "self.skip_configfile = config is not None" in source
 
 
-def test_the_workflow_modifier_still_names_a_modules_rules():
-    """rotorvib.pipeline.snakemake_rules.rule_name calls this method; a module's rules get the
-    prefix of ``use rule * from m as m_*`` through it (tests/test_module.py runs one)."""
-    from snakemake.modules import WorkflowModifier
+def test_a_rule_still_declares_what_the_plan_reads():
+    """rotorvib.pipeline.snakemake_rules.declared reads a rule's priority, benchmark, resources
+    (a mapping that answers ``in``), ``norun`` and the workflow's set of local rules."""
+    import snakemake.api  # noqa: F401  (imported first: snakemake.workflow alone is circular)
+    from snakemake.resources import Resources
+    from snakemake.workflow import Workflow
 
-    method = getattr(WorkflowModifier, "modify_rulename", None)
-    assert callable(method), "snakemake.modules.WorkflowModifier.modify_rulename is gone"
-    assert tuple(inspect.signature(method).parameters) == ("self", "rulename")
+    for attribute in ("self.priority = 0", "self._benchmark = None", "self.norun = False"):
+        assert attribute in inspect.getsource(Rule.__init__), attribute
+    assert isinstance(getattr(Rule, "benchmark"), property)
+    resources = Resources.from_mapping({"batch": 1})
+    assert "batch" in resources and "other" not in resources
+    assert "self._localrules.add(name)" in inspect.getsource(Workflow.rule)
 
 
 def test_the_workflow_still_keeps_the_calling_snakefiles_config_first():

@@ -30,7 +30,7 @@ rule run_record:
 
 rule archive:
     input:
-        results=all_results() + figure_companions(),
+        results=PLAN.all_results() + PLAN.figure_companions(),
         configuration=list(RUN_RECORD.values()) + configuration_files(),
         code=[source(name) for name in ("Snakefile", "LICENSE", "CITATION.cff")],
     output:

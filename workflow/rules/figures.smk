@@ -1,6 +1,6 @@
-# Every figure of every paper, driven by the FIGURES declarations of the papers' .smk files. The
-# figures of a paper that wait for the same batch studies (threads: BATCH_THREADS) are drawn by
-# one job, in one process: its start-up, about half a second, is paid once (figure_groups). So
+# Every figure of every paper, as the papers' packages declare them (FIGURES). The figures of a
+# paper that wait for the same batch rules (resources: batch=1) are drawn by one job, in one
+# process: its start-up, about half a second, is paid once (Plan.figure_groups). So
 # each paper's figures of datasets made in seconds, which wait for no batch study, are one job;
 # a figure of a batch study is drawn as soon as that study ends, beside the others. A change to
 # one of the quick studies redraws its paper's other quick figures too (a few seconds), and
@@ -9,9 +9,11 @@
 
 # A figure job is named for the first figure it draws (figures_b_fig8 draws Figs 8-10 and 12-14
 # and the other figures of the balance studies).
-for (_paper, _studies), _names in figure_groups().items():
-    _rule = figure_rule(_paper, _names[0])
-    _datasets = figure_datasets(_paper, _names)
+FIGURE_GROUPS = PLAN.figure_groups(rule_making)
+
+for (_paper, _studies), _names in FIGURE_GROUPS.items():
+    _rule = PLAN.figure_rule(FIGURE_GROUPS, _paper, _names[0])
+    _datasets = PLAN.figure_datasets(_paper, _names)
 
     rule:
         name:
@@ -37,7 +39,7 @@ for (_paper, _studies), _names in figure_groups().items():
                     key: FIGURES[_paper][name][key]
                     for key in ("function", "datasets", "options")
                 }
-                | {"keep": outputs_named(_paper, name)}
+                | {"keep": PLAN.outputs_named(_paper, name)}
                 for name in _names
             },
         message:

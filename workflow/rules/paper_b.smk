@@ -1,17 +1,14 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up. Its
 # figures, tables and the cases its jobs take are declared in rotorvib.papers.b.outputs.
 from rotorvib.paper_values import paper_values_of
+from rotorvib.papers.b import batch as paper_b_batch
 from rotorvib.papers.b import outputs as paper_b
 from rotorvib.papers.b.config_checks import boundary_base
 
 B = config["paper_b"]
 B_SETUP = paper_b.setup(B)
 B_UNCERTAIN = paper_b.uncertain_cases(B, paper_values_of(PAPER_VALUES, "B"))
-B_RUNS = {
-    "setup": B_SETUP,
-    "kinematics": B["kinematics"],
-    "ics": B["initial_conditions"],
-}
+B_RUNS = paper_b_batch.runs(B)
 B_LAW_SOURCES = {
     name: (dataset("b", name_of_dataset), fixed)
     for name, (name_of_dataset, fixed) in paper_b.law_sources(B).items()
@@ -71,6 +68,8 @@ rule b_boundary:
         dataset("b", "boundary_{plane}"),
     log:
         logs("b_boundary_{plane}"),
+    benchmark:
+        benchmarks("b_boundary_{plane}")
     wildcard_constraints:
         plane="|".join(paper_b.PLANES),
     priority: LONGEST_CHAIN
@@ -110,64 +109,9 @@ rule b_ross:
         "../scripts/b_ross.py"
 
 
-# Paper B's batch studies (rotorvib.pipeline.shards), by rule (its script is
-# workflow/scripts/<rule>.py): each its dataset, message, parameters, wall-time bound (minutes),
-# and any inputs or wildcards it has.
-B_BATCH = {
-    "b_balance_study": batch_study(
-        "balance_{study}",
-        "Paper B: balance time against {wildcards.study}",
-        {**B_RUNS, "study": lambda wc: B["balance_studies"][wc.study]},
-        wildcards={"study": "|".join(B["balance_studies"])},
-    ),
-    "b_ga": batch_study(
-        "ga",
-        "Paper B: genetic algorithm over ball damping and mass",
-        {**B_RUNS, "ga": B["ga"]},
-        runtime=60,
-        priority=BESIDE_THE_COMPILE,
-        shards=B["ga_shards"],
-    ),
-    "b_table1_runs": batch_study(
-        "table1",
-        "Paper B: balance time over ball mass and operating speed (Table 1)",
-        {**B_RUNS, "table1": B["table1"]},
-    ),
-    "b_forces": batch_study(
-        "forces",
-        "Paper B: bearing forces of Table 2 against the race radius",
-        {**B_RUNS, "table2": B["table2"], "calibration": B["calibration"]},
-    ),
-    "b_uncertainty": batch_study(
-        "uncertainty_{case}",
-        "Paper B (beyond the paper): Sobol indices and bands of the case {wildcards.case}",
-        {
-            "setup": B_SETUP,
-            "kinematics": B["kinematics"][0],
-            # the case of Table 1 (a mean over the ICs) has its own, smaller sample
-            "uncertainty": lambda wc: B["uncertainty"]
-            | (
-                B["uncertainty"]["mean_over_ics"]
-                if "ics" in B_UNCERTAIN[wc.case]
-                else {}
-            ),
-            "case": lambda wc: B_UNCERTAIN[wc.case],
-        },
-        inputs={"forces": dataset("b", "forces"), "paper_values": PAPER_VALUES},
-        wildcards={"case": "|".join(B_UNCERTAIN)},
-    ),
-    "b_basin": batch_study(
-        "basin",
-        "Paper B: balance time over all initial ball positions",
-        {
-            "setup": B_SETUP,
-            "kinematics": B["kinematics"],
-            "basin": B["basin"],
-            "ics": B["initial_conditions"],
-        },
-        runtime=60,
-    ),
-}
+# Paper B's batch studies, by rule (rotorvib.papers.b.batch: its script is
+# workflow/scripts/<rule>.py).
+B_BATCH = paper_b_batch.batch_studies(B, B_UNCERTAIN)
 
 
 # Each batch study is two rules: its shards (`<rule>_shard`, shard k of n, sent to a cluster),
@@ -180,7 +124,8 @@ for _rule, _study in B_BATCH.items():
             name:
                 f"{_rule}_shard" if _sharded else _rule
             input:
-                **_study["inputs"],
+                **{name: dataset("b", name) for name in _study["reads"]},
+                **({"paper_values": PAPER_VALUES} if _study["paper_values"] else {}),
                 **(
                     {}
                     if _sharded
@@ -193,17 +138,22 @@ for _rule, _study in B_BATCH.items():
             output:
                 (shard_file if _sharded else dataset)("b", _study["dataset"]),
             log:
-                logs(_study["name"] + (".{shard}-of-{shards}" if _sharded else "")),
+                logs(
+                    f"b_{_study['dataset']}"
+                    + (".{shard}-of-{shards}" if _sharded else "")
+                ),
             benchmark:
                 benchmarks(
-                    _study["name"] + (".{shard}-of-{shards}" if _sharded else "")
+                    f"b_{_study['dataset']}"
+                    + (".{shard}-of-{shards}" if _sharded else "")
                 )
             wildcard_constraints:
                 **_study["wildcards"],
-            priority: _study["priority"]
+            priority: BESIDE_THE_COMPILE if _study["first"] else LONGEST_CHAIN
             localrule: not _sharded
             threads: BATCH_THREADS
             resources:
+                batch=1,
                 runtime=_study["runtime"],
             params:
                 **_study["params"],
@@ -249,6 +199,7 @@ rule b_pareto:
     localrule: B["shards"] == 1
     threads: BATCH_THREADS
     resources:
+        batch=1,
         runtime=30,
     params:
         setup=B_SETUP,
@@ -269,6 +220,8 @@ rule b_balance_law:
         dataset("b", "balance_law"),
     log:
         logs("b_balance_law"),
+    benchmark:
+        benchmarks("b_balance_law")
     priority: LONGEST_CHAIN
     # Reads datasets and solves small eigenvalue problems: runs where Snakemake runs.
     localrule: True
@@ -347,6 +300,8 @@ rule b_zeta_inversion:
     # about two thousand run-ups: seconds, where Snakemake runs
     localrule: True
     threads: BATCH_THREADS
+    resources:
+        batch=1,
     params:
         **B_RUNS,
         zeta_inversion=B["zeta_inversion"],
@@ -455,6 +410,8 @@ rule b_discrepancies:
     priority: LONGEST_CHAIN
     localrule: True
     threads: BATCH_THREADS
+    resources:
+        batch=1,
     params:
         paper_b={
             **B_SETUP,

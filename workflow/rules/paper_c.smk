@@ -109,6 +109,9 @@ rule c_spin:
         dataset("c", "spin"),
     log:
         logs("c_spin"),
+    benchmark:
+        benchmarks("c_spin")
+    priority: COMPUTES
     # closed forms and small linear solves: runs where Snakemake runs
     localrule: True
     params:
@@ -156,6 +159,8 @@ rule c_broadband:
     priority: COMPUTES
     localrule: True
     threads: BATCH_THREADS
+    resources:
+        batch=1,
     params:
         rotor=C["rotor"],
         table2=C["table2"],

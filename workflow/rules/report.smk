@@ -17,11 +17,11 @@ rule report_text:
             for name in FIGURES[paper]
         ],
     output:
-        landing=REPORT_LANDING,
-        summary=SUMMARY_PAGE,
-        figure_captions=captions(FIGURES, "figure"),
-        table_captions=captions(TABLES, "table"),
-        table_pages=table_pages(),
+        landing=PLAN.landing,
+        summary=PLAN.summary_page,
+        figure_captions=PLAN.captions("figure"),
+        table_captions=PLAN.captions("table"),
+        table_pages=PLAN.table_pages(),
     log:
         logs("report_text"),
     # Reads tables only: runs where Snakemake runs, never as a cluster job.
@@ -38,7 +38,10 @@ rule report_text:
         # the rule, script and function that made each, and the rules of its datasets
         made_by={
             kind: {
-                paper: {name: made_by(paper, name, kind) for name in outputs}
+                paper: {
+                    name: PLAN.made_by(rule_making, FIGURE_GROUPS, paper, name, kind)
+                    for name in outputs
+                }
                 for paper, outputs in declared.items()
             }
             for kind, declared in (("figure", FIGURES), ("table", TABLES))
@@ -55,7 +58,7 @@ rule report_text:
 # code (a `run:` block, whose own code Snakemake watches).
 import shutil
 
-_SHOWN = report_entries()
+_SHOWN = PLAN.report_entries()
 
 
 rule report_results:

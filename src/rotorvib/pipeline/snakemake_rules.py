@@ -5,17 +5,22 @@ Snakefile can reach through ``workflow.rules``.  The workflow needs four things 
 public API gives: a rule's script path, to give the rule its code fingerprint as a parameter
 (``Rule.set_params``), and, for an input dataset, the rule that makes it and its wildcards
 (``Rule.is_producer``, ``Rule.get_wildcards``), to check on read that the dataset was made by
-that rule under this run's configuration.  And three things of the workflow: whether it is read
-as a module given its own ``config:`` (:func:`module_config_given`), whose configuration is
-then that ``config:`` rather than the command's files, the configuration of the workflow
-that reads it (:func:`caller_config`), where that ``config:`` comes from, and the name a rule
-has in a module (:func:`rule_name`: the figure jobs are grouped by the batch rules they wait for).  Every such
-use is here; ``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so
-an upgrade breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
+that rule under this run's configuration; and what a rule declares, as the workflow's plan
+reads it (:func:`declared`: its inputs and outputs, resources, priority, benchmark, and whether
+it is a ``localrule``).  And two things of the workflow: whether it is read as a module given
+its own ``config:`` (:func:`module_config_given`), whose configuration is then that ``config:``
+rather than the command's files, and the configuration of the workflow that reads it
+(:func:`caller_config`), where that ``config:`` comes from.  Every such use is here;
+``tests/test_snakemake_rules.py`` fails on a Snakemake that no longer has them, so an upgrade
+breaks loudly, not silently.  This module does not import Snakemake: the Snakefile hands it the
 objects.
 """
 
 from __future__ import annotations
+
+from pathlib import Path
+
+from rotorvib.pipeline.plan import Maker
 
 #: The ``Rule`` methods used here, as the pinned Snakemake defines them (name: parameters).
 USED = {"set_params": ("self", "params", "kwparams"), "is_producer": ("self", "requested_output"),
@@ -44,10 +49,23 @@ def producer(rules, path: str):
     return next((rule for rule in rules if rule.is_producer(path)), None)
 
 
-def rule_name(workflow, name: str) -> str:
-    """The name that the rule written as ``name`` has in this run: prefixed where the workflow
-    is read as another's module (``use rule * from rotorvib as rotorvib_*``)."""
-    return workflow.modifier.modify_rulename(name)
+def declared(workflow, rule, root: Path) -> Maker:
+    """What ``rule`` declares, as the plan reads it: its inputs (None for an input function)
+    and outputs, whether it is a batch rule (``resources: batch=1``), whether it is a
+    ``localrule`` (the workflow's set of them: ``Workflow.is_local`` says True of every rule when
+    nothing is sent to a cluster), its priority, whether it has a benchmark, and its script
+    relative to the workflow's folder ``root``."""
+    script = script_path(rule)
+    return Maker(
+        name=rule.name,
+        inputs=tuple(None if callable(item) else str(item) for item in rule.input),
+        outputs=tuple(str(item) for item in rule.output),
+        batch="batch" in rule.resources,
+        local=rule.name in workflow._localrules or rule.norun,
+        priority=rule.priority,
+        benchmark=rule.benchmark is not None,
+        script=None if script is None else str(Path(script).resolve().relative_to(root)),
+    )
 
 
 def module_config_given(workflow) -> bool:
