@@ -27,7 +27,7 @@ def maker(path):
 @pytest.fixture
 def plan(config, tmp_path):
     """Paper C's plan under ``out``, its figures replaced by four toy ones of a paper t."""
-    plan = Plan({"c": config["paper_c"]}, "out", "data/values.csv", tmp_path)
+    plan = Plan({"c": config["paper_c"]}, "out", tmp_path)
     plan.figures = {"t": {
         "f1": figure("f1", {"d": "quick"}, "The quick one."),
         "f2": figure("f2", {"d": "study"}, "The study."),
@@ -79,7 +79,7 @@ def test_paths_and_shards(plan):
 
 def test_every_declared_output_is_a_final_file_and_every_shown_one_has_its_caption(config,
                                                                                    tmp_path):
-    plan = Plan({"c": config["paper_c"]}, "out", "data/values.csv", tmp_path)
+    plan = Plan({"c": config["paper_c"]}, "out", tmp_path)
     figures, tables = plan.figures["c"], plan.tables["c"]
     final = set(plan.all_results())
     assert {plan.figure_file("c", name) for name in figures} <= final

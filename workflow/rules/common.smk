@@ -88,7 +88,6 @@ PAPER_VALUES = source("data/paper_values.csv")
 PLAN = Plan(
     {paper: config[f"paper_{paper}"] for paper in PAPERS},
     RESULTS_DIR,
-    PAPER_VALUES,
     WORKING_FOLDER,
 )
 # The plan's paths and declarations, as the rule files name them.

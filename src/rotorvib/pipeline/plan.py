@@ -77,15 +77,13 @@ def rule_problems(rules: list[Maker]) -> list[str]:
 
 
 class Plan:
-    """The files of a run under ``results`` (the configuration's ``results`` key) for the
-    ``papers`` (their declarations, ``{paper: config section}``), the workflow's own files under
-    ``workflow_root`` and the report's texts under ``working_folder``."""
+    """The files of a run under ``results`` (the configuration's ``results`` key) for the papers
+    of ``sections`` (``{paper: its configuration section}``, from which its package declares its
+    outputs), the report's texts named under the run's ``working_folder``."""
 
-    def __init__(self, sections: dict[str, dict], results: str, paper_values: str,
-                 working_folder: Path):
+    def __init__(self, sections: dict[str, dict], results: str, working_folder: Path):
         self.papers = sorted(sections)
         self.results = results
-        self.paper_values = paper_values
         self.working_folder = Path(working_folder)
         self.report_dir = f"{results}/report"
         self.landing = f"{self.report_dir}/landing.rst"
