@@ -1,6 +1,6 @@
 # What the rules share that needs Snakemake's objects: the configuration, read strictly and
-# checked before any rule is read; the plan of the run's files (rotorvib.pipeline.plan: the
-# paths, the papers' outputs, the report's entries and the figure grouping), handed the rule
+# checked before the rules are read; the plan of the run's files (rotorvib.pipeline.plan, with
+# the paths, the papers' outputs, the report's entries and the figure grouping), handed the rule
 # graph; and the rules for rule authors, checked once every rule is read (check_rules). The
 # parameters every script rule gets then are rotorvib.pipeline.rule_params's.
 import json
@@ -71,8 +71,9 @@ PAPERS = sorted(
 # the comparison's reading of the papers' words ("close" and its alternatives), shared by
 # every paper's claims (rotorvib.comparison.Close)
 CLOSE = config["comparison"]
-# Threads of a batch rule (`resources: batch=1`: it shares a batch of runs out over threads,
-# rotorvib.models.balancer.simulate, or its searches over processes, rotorvib.methods.forked):
+# Threads of each batch rule (it declares `batch=1` among its resources, and shares a batch of
+# runs out over threads, rotorvib.models.balancer.simulate, or searches over processes,
+# rotorvib.methods.forked):
 # half the cores Snakemake is given, so that -j2 runs two single-threaded jobs side by side and a
 # larger -j hands each batch job several cores (profiles/slurm sets its own, written from the
 # rules by rotorvib.pipeline.slurm_profile). A command given no cores (--rulegraph, --lint)
