@@ -9,7 +9,6 @@ rule report_text:
         comparison=f"{RESULTS_DIR}/comparison.csv",
         discrepancies=f"{RESULTS_DIR}/discrepancies.csv",
         paper_values=PAPER_VALUES,
-        papers=source("data/papers.yaml"),
         tables=[d["csv"] for paper in TABLES for d in TABLES[paper].values()],
         drawn=[
             figure_file(paper, name, "json")
@@ -27,6 +26,13 @@ rule report_text:
     # Reads tables only: runs where Snakemake runs, never as a cluster job.
     localrule: True
     params:
+        # the run's papers as data/papers.yaml cites them, read here as the configuration is
+        # (strictly): no job reads YAML
+        papers={
+            letter: entry
+            for letter, entry in load_yaml(source("data/papers.yaml")).items()
+            if letter.lower() in PAPERS
+        },
         figures={
             paper: {
                 name: {k: d[k] for k in ("shows", "items")}

@@ -9,7 +9,6 @@ from pathlib import Path
 
 from rotorvib import discrepancy
 from rotorvib.pipeline import report, report_pages, report_tables
-from rotorvib.pipeline.strict_yaml import load_yaml
 
 job.start(snakemake.log[0])
 
@@ -22,8 +21,9 @@ def rows(path):
 table = rows(snakemake.input.comparison)
 discrepancies = rows(snakemake.input.discrepancies)
 claims = {(row["paper"], row["quantity"]): row["claim"] for row in rows(snakemake.input.paper_values)}
-# the papers of the run (config key papers): those the comparison holds rows of
-papers = {letter: entry for letter, entry in load_yaml(snakemake.input.papers).items()
+# the papers of the run (config key papers, data/papers.yaml read when the rules are): those the
+# comparison holds rows of
+papers = {letter: entry for letter, entry in snakemake.params.papers.items()
           if letter in {row["paper"] for row in table}}
 out = snakemake.output
 figure_captions = {Path(path).stem: path for path in out.figure_captions}
