@@ -7,12 +7,16 @@ it once the runs exist.)"""
 
 import json
 import os
+import re
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
 
+from conftest import ROOT
 from forked_snakemake import ForkedSnakemake
+from rotorvib.pipeline.fingerprint import import_closure
+from rotorvib.pipeline.slurm_profile import declared_rules
 from workflow_runs import (
     REDUCED,
     copy_run,
@@ -147,3 +151,32 @@ def test_comments_and_docstrings_rerun_nothing(run_dir, tmp_path):
             text = '"""Edited: ' + text[3:]
         path.write_text(text + "\n# a comment\n")
     assert planned_outputs(work) == set()
+
+
+def _jobs_by_rule(cwd: Path, *args: str) -> dict[str, int]:
+    """The jobs of a whole run of the configuration ``args``, by rule (a forced dry run)."""
+    stats = snakemake(cwd, "-n", "-j1", "--forceall", "--quiet", "rules", *args).stdout
+    return {rule: int(n) for rule, n in re.findall(r"^(\w+)\s+(\d+)$", stats, re.M)
+            if rule != "total"}
+
+
+def test_the_decisions_state_what_an_edit_of_the_jobs_machinery_reruns(run_dir):
+    """The decisions table (docs/architecture.md) gives, for the pipeline modules that more
+    than one job loads (a job's start-up; a batch study's split), the jobs an edit of one
+    reruns, in a paper run and in the reduced run: counted here from the modules each job of
+    the reduced run loaded, and from the code the scripts of a paper run's jobs import."""
+    records = job_records(run_dir)
+    paper = _jobs_by_rule(ROOT)
+    scripts = {rule.name: ROOT / rule.script for rule in declared_rules(ROOT) if rule.script}
+    stated = re.compile(r"(\d+) of a paper run's (\d+) jobs, (\d+) of the reduced run's (\d+)")
+    table = (ROOT / "docs/architecture.md").read_text()
+    for module in ("job", "pint_probe", "console", "shards"):
+        row = next(line for line in table.splitlines()
+                   if f"`pipeline/{module}.py`" in line and stated.search(line))
+        name = f"rotorvib.pipeline.{module}"
+        in_paper = sum(n for rule, n in paper.items()
+                       if rule in scripts and name in import_closure(scripts[rule]))
+        in_reduced = sum(name in r["modules"] for r in records)
+        reduced = sum(_jobs_by_rule(run_dir, *REDUCED).values())
+        assert [int(n) for n in stated.search(row).groups()] == [
+            in_paper, sum(paper.values()), in_reduced, reduced], module
