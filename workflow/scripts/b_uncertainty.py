@@ -3,7 +3,7 @@ paper_b.shards > 1, a shard of its runs (b_uncertainty_shard) or their gathering
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.paper_values import paper_values_of
+from rotorvib.comparison.paper_values import paper_values_of
 from rotorvib.io.datasets import read_dataset
 from rotorvib.models.balancer.layout import N_METRICS
 from rotorvib.models.balancer.simulate import use_threads

@@ -31,7 +31,7 @@ import re
 import sys
 from pathlib import Path
 
-from rotorvib.comparison import (CLAIM_VERDICTS, EXPECTATION_VERDICTS, NUMERIC_VERDICTS, totals,
+from rotorvib.comparison.table import (CLAIM_VERDICTS, EXPECTATION_VERDICTS, NUMERIC_VERDICTS, totals,
                                  verdict_definitions)
 
 ROOT = Path(__file__).resolve().parents[3]

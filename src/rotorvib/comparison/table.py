@@ -29,9 +29,9 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from rotorvib.choices import CHOICE_SEPARATOR, alternatives_text, choices_text, joined
+from rotorvib.comparison.choices import CHOICE_SEPARATOR, alternatives_text, choices_text, joined
 from rotorvib.io.tables import write_table
-from rotorvib.paper_values import paper_says
+from rotorvib.comparison.paper_values import paper_says
 
 COLUMNS = ("paper", "item", "quantity", "unit", "source", "paper_value", "reproduced",
            "rel_error", "paper_says", "margin", "uncertainty", "margin_unit", "margin_basis",
