@@ -74,6 +74,7 @@ def write_api(app):
     order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers.outputs",
              "rotorvib.papers.config_problems", "rotorvib.papers",
              "rotorvib.comparison.paper_values", "rotorvib.comparison.choices",
+             "rotorvib.comparison.verdicts", "rotorvib.comparison.reproduced",
              "rotorvib.comparison.table", "rotorvib.comparison.reproduced_csv",
              "rotorvib.comparison.discrepancy", "rotorvib.comparison", "rotorvib.checks",
              "rotorvib.io", "rotorvib.pipeline"]

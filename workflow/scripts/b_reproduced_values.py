@@ -4,7 +4,7 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 
 from rotorvib.comparison.choices import Close
 
-from rotorvib.comparison.table import merge_variants
+from rotorvib.comparison.reproduced import merge_variants
 
 from rotorvib.comparison.paper_values import paper_values_of
 from rotorvib.comparison.reproduced_csv import write_reproduced

@@ -26,7 +26,7 @@ def under_choice(evaluate, key: str, used, alternatives, unit: str = "") -> dict
     """A claim evaluated with one of the project's choices at the value ``used`` and at each
     of ``alternatives``: ``{"key = value unit": evaluate(value)}``, the used value first (its
     margin is the row's). Passed as a claim's ``holds``, the verdict is DEPENDS, naming the
-    values, where the choice decides it (:func:`rotorvib.comparison.table.claim_verdict`)."""
+    values, where the choice decides it (:func:`rotorvib.comparison.verdicts.claim_verdict`)."""
     def name(value):
         said = f"{value:g}" if isinstance(value, (int, float)) else str(value)
         return f"{key} = {said}" + (f" {unit}" if unit else "")
@@ -55,7 +55,7 @@ class Close:
         return format(self.value, spec)
 
     def margins(self, evaluate, more=()) -> dict:
-        """``evaluate(close)`` (a :class:`rotorvib.comparison.table.Margin`) at the standard, its alternatives and
+        """``evaluate(close)`` (a :class:`rotorvib.comparison.reproduced.Margin`) at the standard, its alternatives and
         ``more`` (:func:`under_choice`)."""
         return under_choice(evaluate, self.KEY, self.value, (*self.alternatives, *more))
 

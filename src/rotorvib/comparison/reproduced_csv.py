@@ -10,7 +10,7 @@ from pathlib import Path
 
 from rotorvib.comparison.choices import CHOICE_SEPARATOR
 
-from rotorvib.comparison.table import MARGIN_COLUMNS, Margin, Reproduced
+from rotorvib.comparison.reproduced import MARGIN_COLUMNS, Margin, Reproduced
 
 from rotorvib.comparison.paper_values import float_or_none
 

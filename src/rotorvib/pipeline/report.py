@@ -14,7 +14,8 @@ import re
 from collections import Counter
 from pathlib import Path
 
-from rotorvib.comparison.table import VERDICT_GROUPS, margin_text, totals, verdict_definitions
+from rotorvib.comparison.table import margin_text
+from rotorvib.comparison.verdicts import VERDICT_GROUPS, totals, verdict_definitions
 
 # Verdicts that are findings: the paper and the reproduction disagree.
 FINDINGS = ("MAJOR", "PAPER-INCONSISTENT", "UNEXPECTED", "NOT SUPPORTED")

@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison.choices import Close
-from rotorvib.comparison.table import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.tables import order_bound
 from rotorvib.methods import routh
 

@@ -23,7 +23,8 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.comparison.choices import VARIANT_JOIN
-from rotorvib.comparison.table import MATCH_TOL, Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
+from rotorvib.comparison.verdicts import MATCH_TOL
 from rotorvib.io.coords import label_coord, labels
 from rotorvib.comparison.paper_values import decimals
 from rotorvib.papers.b.choices import R_CHOICE, kinematics_choice
