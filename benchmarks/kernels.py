@@ -31,7 +31,7 @@ import numpy as np
 import xarray as xr
 
 from benchmarks.reduced import run_reduced
-from rotorvib.comparison import margin_text
+from rotorvib.comparison.table import margin_text
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT / "benchmarks/records/kernels.json"

@@ -48,7 +48,7 @@ def write_outputs_table(app):
     import subprocess
     import sys
 
-    from rotorvib.outputs import PROJECT_TABLES
+    from rotorvib.papers.outputs import PROJECT_TABLES
     from rotorvib.pipeline.outputs_table import outputs_rows, outputs_table, producers
 
     plan = subprocess.run([sys.executable, "-m", "snakemake", "--summary", "--nolock"],
@@ -71,10 +71,12 @@ def write_api(app):
     import rotorvib
 
     modules = sorted(m.name for m in pkgutil.walk_packages(rotorvib.__path__, "rotorvib."))
-    order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers", "rotorvib.paper_values",
-             "rotorvib.choices", "rotorvib.comparison", "rotorvib.reproduced_csv",
-             "rotorvib.discrepancy", "rotorvib.checks", "rotorvib.outputs",
-             "rotorvib.config_problems",
+    order = ["rotorvib.models", "rotorvib.methods", "rotorvib.papers.outputs",
+             "rotorvib.papers.config_problems", "rotorvib.papers",
+             "rotorvib.comparison.paper_values", "rotorvib.comparison.choices",
+             "rotorvib.comparison.verdicts", "rotorvib.comparison.reproduced",
+             "rotorvib.comparison.table", "rotorvib.comparison.reproduced_csv",
+             "rotorvib.comparison.discrepancy", "rotorvib.comparison", "rotorvib.checks",
              "rotorvib.io", "rotorvib.pipeline"]
     modules.sort(key=lambda m: (next(i for i, p in enumerate(order) if m.startswith(p)), m))
     pages = ROOT / "docs/api"

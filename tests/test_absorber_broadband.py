@@ -112,7 +112,7 @@ def test_a_broadband_claim_inside_the_seed_spread_is_undetermined():
     bounds; with the springs free the row depends on that bound when the free pair wins."""
     import xarray as xr
 
-    from rotorvib.comparison import claim_verdict
+    from rotorvib.comparison.verdicts import claim_verdict
     from rotorvib.papers.c.broadband import broadband_rows
 
     def rows(by_seed, den_hartog, free=3.0):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from rotorvib.comparison import claim_verdict
+from rotorvib.comparison.verdicts import claim_verdict
 from rotorvib.papers.b.curves import seconds_text
 from rotorvib.papers.b.row_values import optimum_lead
 
@@ -70,7 +70,7 @@ def test_a_run_up_shorter_than_the_sample_step_is_over_by_the_first_sample():
 
 
 def test_table1_keeps_the_papers_speeds_whatever_the_configuration_runs():
-    from rotorvib.comparison import Reproduced
+    from rotorvib.comparison.reproduced import Reproduced
     from rotorvib.papers.b.row_values import table1_at_paper_speeds
 
     paper = {"table1_m_opt_200": 0.006, "table1_mean_time_200": 4.7,

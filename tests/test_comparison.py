@@ -1,19 +1,11 @@
 import numpy as np
 import pytest
 
-from rotorvib.choices import NO_CHOICE
-from rotorvib.comparison import (
-    Margin,
-    Reproduced,
-    build_table,
-    claim_verdict,
-    margin_text,
-    merge_variants,
-    totals,
-    verdict,
-    with_findings,
-)
-from rotorvib.reproduced_csv import read_reproduced, write_reproduced
+from rotorvib.comparison.choices import NO_CHOICE
+from rotorvib.comparison.reproduced import Margin, Reproduced, merge_variants
+from rotorvib.comparison.reproduced_csv import read_reproduced, write_reproduced
+from rotorvib.comparison.table import build_table, margin_text, with_findings
+from rotorvib.comparison.verdicts import claim_verdict, totals, verdict
 
 HOLDS, FAILS = Margin(0.2, 0.01, "s", "test"), Margin(-0.2, 0.01, "s", "test")
 
@@ -195,7 +187,7 @@ def test_an_uncertainty_claim_no_case_could_test_is_undetermined_saying_why():
 def test_a_self_contradicting_paper_is_judged_against_its_own_implied_value():
     """Table 2's forces imply a 33 % decay-time reduction where the text prints 55 % (the text
     swaps its two percentages): the reproduction is judged against 33 %, not 55 %."""
-    from rotorvib.comparison import verdict
+    from rotorvib.comparison.verdicts import verdict
 
     assert verdict(55.0, 33.5, implied=32.94) == (pytest.approx(abs(33.5 - 32.94) / 32.94),
                                                   "PAPER-INCONSISTENT")
@@ -208,7 +200,7 @@ def test_an_optimum_the_grid_cannot_resolve_is_undetermined():
     """eq. (41)'s 6 g against a grid optimum of 6.5 g whose neighbours lie within the curve's
     bumps: UNDETERMINED while the interval holds the paper's value, UNEXPECTED once it does
     not (a smoother curve, one choice moved)."""
-    from rotorvib.comparison import verdict
+    from rotorvib.comparison.verdicts import verdict
     from rotorvib.papers.b.curves import argmin_interval, roughness
 
     masses = 0.0055 + 0.00025 * np.arange(9)                 # 5.5-7.5 g in quarter grams
@@ -225,7 +217,9 @@ def test_an_optimum_the_grid_cannot_resolve_is_undetermined():
 
 
 def test_a_calibrated_row_is_counted_apart_never_as_evidence(tmp_path):
-    from rotorvib.comparison import CALIBRATED, Margin, Reproduced, build_table, totals
+    from rotorvib.comparison.reproduced import Margin, Reproduced
+    from rotorvib.comparison.table import build_table
+    from rotorvib.comparison.verdicts import CALIBRATED, totals
 
     values = [{"paper": "B", "item": "Table 2", "quantity": "q", "unit": "", "value": None,
                "source": "theory", "read_off_figure": "no", "claim": "c", "quote_where": "",
@@ -244,8 +238,9 @@ def test_moving_one_choice_flips_a_constructed_verdict():
     "close"): while every alternative agrees it is decided; declare one across the margin and
     it DEPENDS on the choice, naming the value; the comparison's CSV carries the choice and
     what each alternative gave."""
-    from rotorvib.choices import Close, under_choice
-    from rotorvib.comparison import Margin, Reproduced, build_table
+    from rotorvib.comparison.choices import Close, under_choice
+    from rotorvib.comparison.reproduced import Margin, Reproduced
+    from rotorvib.comparison.table import build_table
 
     off = 0.01005                             # the antiresonance's distance from resonance
 

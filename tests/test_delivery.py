@@ -12,7 +12,7 @@ import pytest
 
 import report_browser
 from conftest import ROOT
-from rotorvib.paper_values import decimals
+from rotorvib.comparison.paper_values import decimals
 from rotorvib.pipeline.report import SUBCATEGORIES, numbers_of_item, numbers_of_name
 from rotorvib.pipeline.report import categories as report_categories
 from workflow_runs import REDUCED, copy_run, snakemake

@@ -7,8 +7,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from rotorvib import discrepancy as d
-from rotorvib.comparison import Reproduced
+from rotorvib.comparison import discrepancy as d
+from rotorvib.comparison.reproduced import Reproduced
 from rotorvib.io.datasets import check_metadata
 from rotorvib.papers.b import discrepancies as b
 from rotorvib.papers.b.setup import Setup

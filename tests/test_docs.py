@@ -153,7 +153,7 @@ def test_the_outputs_table_names_every_result_and_the_rules_that_make_it(run_dir
     table has a row."""
     from importlib import import_module
 
-    from rotorvib.outputs import PROJECT_TABLES
+    from rotorvib.papers.outputs import PROJECT_TABLES
     from rotorvib.pipeline.config import merge
     from rotorvib.pipeline.outputs_table import outputs_rows, outputs_table, producers
     from workflow_runs import REDUCED, job_records, snakemake

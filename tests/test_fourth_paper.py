@@ -12,7 +12,7 @@ from workflow_runs import snakemake
 NEW_FILES = {
     "src/rotorvib/papers/d/__init__.py": '"""Paper D: a toy paper, added as one is."""\n',
     "src/rotorvib/papers/d/outputs.py": '''"""Paper D's outputs."""
-from rotorvib.outputs import figure
+from rotorvib.papers.outputs import figure
 
 UNDRAWN_DATASETS = ()
 NOTES = ()

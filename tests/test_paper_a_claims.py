@@ -3,8 +3,8 @@
 import numpy as np
 import xarray as xr
 
-from rotorvib.choices import Close
-from rotorvib.comparison import claim_verdict
+from rotorvib.comparison.choices import Close
+from rotorvib.comparison.verdicts import claim_verdict
 from rotorvib.papers.a.claims import two_term_row
 
 RK = {"method": "dop853", "rtol": 1e-11}

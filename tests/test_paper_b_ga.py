@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from rotorvib.comparison import verdict
+from rotorvib.comparison.verdicts import verdict
 from rotorvib.models.balancer import layout
 from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.optimise import balance_time_objective, ga_dataset, tune_balancer
@@ -88,7 +88,7 @@ def test_a_ga_claim_inside_the_seed_spread_is_undetermined():
     the lower one being the GA's own bound."""
     import xarray as xr
 
-    from rotorvib.comparison import claim_verdict
+    from rotorvib.comparison.verdicts import claim_verdict
     from rotorvib.papers.b.claims import ga_rows
 
     def ga(by_seed):

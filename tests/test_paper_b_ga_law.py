@@ -158,7 +158,7 @@ def test_a_band_edge_the_study_shares_is_not_a_failure_edge():
 def test_a_ga_claim_that_a_seed_decides_is_undetermined():
     """Two of five seeds outside the band: the margin lies inside its uncertainty; every seed
     inside: decided, however spread the seeds."""
-    from rotorvib.comparison import Margin
+    from rotorvib.comparison.reproduced import Margin
     from rotorvib.papers.b.claims import _seed_spread
 
     inside = 0.004                               # the optimum just inside [0.1, 0.2]

@@ -56,7 +56,7 @@ def test_the_factor_that_moves_the_balance_time_is_found():
     """Synthetic runs t = t_pk + L / sigma with one factor varying: that factor alone explains
     the times (share near 1), the others nothing; the mass row holds only when sigma varies
     and falls with the mass."""
-    from rotorvib.comparison import claim_verdict
+    from rotorvib.comparison.verdicts import claim_verdict
     from rotorvib.papers.b.law import factor_shares, trend_rows
 
     n = 40
@@ -79,7 +79,7 @@ def test_support_damping_moves_the_decay_rate_and_beta_hardly():
     finite change (zeta 20 % larger) within 1 %; the row holds."""
     import xarray as xr
 
-    from rotorvib.comparison import claim_verdict
+    from rotorvib.comparison.verdicts import claim_verdict
     from rotorvib.papers.b.law import decay_elasticities, slow_decay_rate, support_damping_rows
 
     one = {"m_bar": 0.01, "eps_bar": 0.01, "beta": 1.0, "omega_bar": 2.0}
@@ -117,8 +117,8 @@ def test_the_law_row_is_evaluated_at_each_whirl_share_and_states_its_domain():
     where it is 40 % off at every share; the row names both, and depends on no share."""
     import xarray as xr
 
-    from rotorvib.choices import Close
-    from rotorvib.comparison import claim_verdict
+    from rotorvib.comparison.choices import Close
+    from rotorvib.comparison.verdicts import claim_verdict
     from rotorvib.papers.b.law import law_rows
 
     n = 40

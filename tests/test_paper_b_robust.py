@@ -4,7 +4,7 @@ uncertainty runs and the calibrated band of the race radius."""
 import numpy as np
 import pytest
 
-from rotorvib.comparison import verdict
+from rotorvib.comparison.verdicts import verdict
 from rotorvib.models.balancer import layout
 from rotorvib.models.balancer.simulate import run
 
@@ -173,7 +173,7 @@ def test_a_printed_value_inside_the_band_of_a_wide_prior_only_depends_on_the_pri
     (8.2-11.8 s) and under zeta fixed at 0.01 (10 s): DEPENDS, naming the priors; 10 s holds
     under all three; the narrower range is the sample's points inside it, the fixed value its
     own runs at Saltelli's base points."""
-    from rotorvib.comparison import claim_verdict
+    from rotorvib.comparison.verdicts import claim_verdict
     from rotorvib.papers.b.uncertainty import prior_samples, within_band_rows
 
     ds = _zeta_study({"zeta": [[0.008, 0.012], [0.01, 0.01]]})

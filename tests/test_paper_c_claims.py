@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from rotorvib.choices import Close
-from rotorvib.comparison import claim_verdict
+from rotorvib.comparison.choices import Close
+from rotorvib.comparison.verdicts import claim_verdict
 from rotorvib.models.absorber.frequency_response import bare_rotor_amplitude
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber, dual_to_vector
 from rotorvib.papers.c.claims import frequency_rows, table2_side_by_side

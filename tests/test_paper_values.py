@@ -7,8 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.comparison import Margin, Reproduced, build_table
-from rotorvib.paper_values import paper_says, read_paper_values
+from rotorvib.comparison.paper_values import paper_says, read_paper_values
+from rotorvib.comparison.reproduced import Margin, Reproduced
+from rotorvib.comparison.table import build_table
 
 ROOT = Path(__file__).resolve().parents[1]
 VALUES = read_paper_values(ROOT / "data/paper_values.csv")

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from rotorvib.outputs import figure
+from rotorvib.papers.outputs import figure
 from rotorvib.pipeline.plan import COMPUTES, LONGEST_CHAIN, Maker, Plan, rule_problems
 
 #: A toy rule graph: a quick dataset, a batch study, a dataset computed from the study's, and

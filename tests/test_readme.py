@@ -98,8 +98,8 @@ def test_the_readme_totals_are_generated_from_the_paper_configuration():
     configuration has left results/comparison.csv -- are exactly what the generator writes
     from it (after a change: snakemake -j2 comparison, then python -m
     rotorvib.pipeline.readme results/comparison.csv README.md)."""
-    from rotorvib.comparison import VERDICT_GROUPS, group_of
-    from rotorvib.paper_values import read_paper_values
+    from rotorvib.comparison.paper_values import read_paper_values
+    from rotorvib.comparison.verdicts import VERDICT_GROUPS, group_of
     from rotorvib.pipeline.readme import BEGIN, END, read_table, totals_block, with_totals
 
     block = README[README.index(BEGIN):README.index(END) + len(END)]

@@ -6,7 +6,7 @@ import pytest
 from docutils.core import publish_parts
 from docutils.utils import Reporter
 
-from rotorvib.comparison import with_findings
+from rotorvib.comparison.table import with_findings
 from rotorvib.pipeline import report
 
 # Snakemake appends link targets for each category to every caption and to the landing page.

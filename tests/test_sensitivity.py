@@ -129,7 +129,7 @@ def test_an_output_no_point_of_which_has_a_value_decides_nothing():
     """Every run censored (found by the configuration fuzzer, tests/schema_fuzz.py: paper B's
     Fig 7 case at beta = 0.001 never balances): no band, a NaN margin with a NaN uncertainty,
     which the comparison counts UNDETERMINED, and a statement that says why."""
-    from rotorvib.comparison import Margin
+    from rotorvib.comparison.reproduced import Margin
     from rotorvib.methods.bands import band_statement, percentile_spread
     from rotorvib.methods.sensitivity import study_dataset
 

@@ -22,7 +22,7 @@ from rotorvib.pipeline.shards import (
 )
 from workflow_runs import REDUCED_SHARDED, copy_run, job_counts, job_records, snakemake
 
-#: Every sharded study of paper B (the rules whose script calls run_study or run_search).
+#: Every sharded study of paper B (the rules whose script calls run_balancer_study or run_search).
 SHARDED = ["balance_beta", "balance_mass", "balance_eps_bar", "table1", "forces", "basin", "ga",
            "uncertainty_table2", "uncertainty_fig7", "uncertainty_table1"]
 

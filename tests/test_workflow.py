@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 import yaml
 
-import rotorvib.comparison as comparison
+import rotorvib.comparison.verdicts as comparison
 from conftest import ROOT, cf_check
-from rotorvib.paper_values import read_paper_values
+from rotorvib.comparison.paper_values import read_paper_values
 from workflow_runs import (
     BIN,
     REDUCED,
@@ -64,7 +64,7 @@ def test_no_row_prints_a_missing_number_as_nan(run_dir):
 
 def test_every_decided_claim_names_its_choices_and_what_each_alternative_gave(run_dir):
     """Each decided claim row of the comparison lists the project's choices it rests on, each
-    led by a configuration key that exists (or a constant of rotorvib.comparison), and a
+    led by a configuration key that exists (or a constant of rotorvib.comparison.verdicts), and a
     DEPENDS row lists the alternatives it was evaluated under with what each gave."""
     config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
     rows = list(csv.DictReader((run_dir / "results/comparison.csv").open(newline="")))

@@ -69,7 +69,7 @@ PAPERS = sorted(
     key.removeprefix("paper_") for key in config if key.startswith("paper_")
 )
 # the comparison's reading of the papers' words ("close" and its alternatives), shared by
-# every paper's claims (rotorvib.comparison.Close)
+# every paper's claims (rotorvib.comparison.choices.Close)
 CLOSE = config["comparison"]
 # Threads of each batch rule (it declares `batch=1` among its resources, and shares a batch of
 # runs out over threads, rotorvib.models.balancer.simulate, or searches over processes,

@@ -1,6 +1,6 @@
 # The side-by-side table of every value the papers state against the reproduction, and the
-# discrepancy analysis of the numbers it misses (captions: rotorvib.outputs.PROJECT_TABLES).
-from rotorvib.outputs import PROJECT_TABLES
+# discrepancy analysis of the numbers it misses (captions: rotorvib.papers.outputs.PROJECT_TABLES).
+from rotorvib.papers.outputs import PROJECT_TABLES
 
 
 rule comparison:

@@ -1,6 +1,6 @@
 # Paper B: damping ratio and ball mass of a two-ball automatic balancer with a run-up. Its
 # figures, tables and the cases its jobs take are declared in rotorvib.papers.b.outputs.
-from rotorvib.paper_values import paper_values_of
+from rotorvib.comparison.paper_values import paper_values_of
 from rotorvib.papers.b import batch as paper_b_batch
 from rotorvib.papers.b import outputs as paper_b
 from rotorvib.papers.b.config_checks import boundary_base

@@ -5,20 +5,18 @@ from rotorvib.pipeline import job  # first: the imports below run without the cy
 import numpy as np
 
 from rotorvib.io.coords import grid
-from rotorvib.models.balancer.layout import N_METRICS
-from rotorvib.models.balancer.simulate import use_threads
-from rotorvib.pipeline.shards import run_study
+from rotorvib.pipeline.shards import run_balancer_study
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import force_dataset
 
 job.start(snakemake.log[0])
-use_threads(snakemake.threads)
 p = snakemake.params
 t2, cal = p.table2, p.calibration["R"]
 R_values = np.union1d(grid(cal), [p.setup["machine"]["R"]])
 setup = Setup.from_config(**p.setup)
-run_study(snakemake, setup.runs,
-          lambda runs: force_dataset(setup, kinematics=p.kinematics, cases=t2["cases"],
-                                     R_values=R_values, speed=t2["speed"], eps_bar=t2["eps_bar"],
-                                     phi0_deg=p.ics[t2["ic"]], runs=runs),
-          width=N_METRICS, study="forces")
+run_balancer_study(
+    snakemake, setup,
+    lambda runs: force_dataset(setup, kinematics=p.kinematics, cases=t2["cases"],
+                               R_values=R_values, speed=t2["speed"], eps_bar=t2["eps_bar"],
+                               phi0_deg=p.ics[t2["ic"]], runs=runs),
+    study="forces")

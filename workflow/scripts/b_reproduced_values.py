@@ -2,12 +2,12 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.choices import Close
+from rotorvib.comparison.choices import Close
 
-from rotorvib.comparison import merge_variants
+from rotorvib.comparison.reproduced import merge_variants
 
-from rotorvib.paper_values import paper_values_of
-from rotorvib.reproduced_csv import write_reproduced
+from rotorvib.comparison.paper_values import paper_values_of
+from rotorvib.comparison.reproduced_csv import write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.papers.b.boundaries import boundary_rows
 from rotorvib.papers.b.choices import kinematics_choice

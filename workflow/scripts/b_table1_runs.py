@@ -3,20 +3,18 @@
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.coords import grid
-from rotorvib.models.balancer.layout import N_METRICS
-from rotorvib.models.balancer.simulate import use_threads
-from rotorvib.pipeline.shards import run_study
+from rotorvib.pipeline.shards import run_balancer_study
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.studies import table1_dataset
 
 job.start(snakemake.log[0])
-use_threads(snakemake.threads)
 p = snakemake.params
 t1 = p.table1
 masses = grid(t1["mass"])
 setup = Setup.from_config(**p.setup)
-run_study(snakemake, setup.runs,
-          lambda runs: table1_dataset(setup, kinematics=p.kinematics, speeds=t1["speeds"],
-                                      ics=p.ics, beta=t1["beta"], eps_bar=t1["eps_bar"],
-                                      masses=masses, runs=runs),
-          width=N_METRICS, study="table1")
+run_balancer_study(
+    snakemake, setup,
+    lambda runs: table1_dataset(setup, kinematics=p.kinematics, speeds=t1["speeds"],
+                                ics=p.ics, beta=t1["beta"], eps_bar=t1["eps_bar"],
+                                masses=masses, runs=runs),
+    study="table1")

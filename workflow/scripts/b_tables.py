@@ -6,7 +6,7 @@ from pathlib import Path
 
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.tables import write_table
-from rotorvib.paper_values import paper_value_texts_of
+from rotorvib.comparison.paper_values import paper_value_texts_of
 from rotorvib.papers.b.row_values import beside_printed, table1_rows, table2_rows
 from rotorvib.papers.b.kinematics_note import kinematics_note
 

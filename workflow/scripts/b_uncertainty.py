@@ -3,16 +3,13 @@ paper_b.shards > 1, a shard of its runs (b_uncertainty_shard) or their gathering
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.paper_values import paper_values_of
+from rotorvib.comparison.paper_values import paper_values_of
 from rotorvib.io.datasets import read_dataset
-from rotorvib.models.balancer.layout import N_METRICS
-from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup
 from rotorvib.papers.b.uncertainty import CALIBRATION_KEY, calibrated_band, uncertainty_dataset
-from rotorvib.pipeline.shards import run_study
+from rotorvib.pipeline.shards import run_balancer_study
 
 job.start(snakemake.log[0])
-use_threads(snakemake.threads)
 p = snakemake.params
 u = p.uncertainty
 paper = paper_values_of(snakemake.input.paper_values, "B")
@@ -21,10 +18,11 @@ R_band = calibrated_band(forces, [paper[CALIBRATION_KEY.format(row=row)]
                                   for row in forces.case.values],
                          kinematics=p.kinematics)
 setup = Setup.from_config(**p.setup)
-run_study(snakemake, setup.runs,
-          lambda runs: uncertainty_dataset(setup, case=p.case, ranges=u["ranges"],
-                                           R_band=R_band, kinematics=p.kinematics,
-                                           n_base=u["n_base"], convergence=u["convergence"],
-                                           resamples=u["resamples"], seed=u["seed"],
-                                           alternatives=u["prior_alternatives"], runs=runs),
-          width=N_METRICS, study=f"uncertainty_{snakemake.wildcards.case}", seed=u["seed"])
+run_balancer_study(
+    snakemake, setup,
+    lambda runs: uncertainty_dataset(setup, case=p.case, ranges=u["ranges"],
+                                     R_band=R_band, kinematics=p.kinematics,
+                                     n_base=u["n_base"], convergence=u["convergence"],
+                                     resamples=u["resamples"], seed=u["seed"],
+                                     alternatives=u["prior_alternatives"], runs=runs),
+    study=f"uncertainty_{snakemake.wildcards.case}", seed=u["seed"])

@@ -4,7 +4,7 @@ damping zeta, and which zeta (if any) reproduces them together."""
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
 from rotorvib.io.coords import grid
-from rotorvib.paper_values import paper_value_texts_of
+from rotorvib.comparison.paper_values import paper_value_texts_of
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.models.balancer.simulate import use_threads
 from rotorvib.papers.b.setup import Setup

@@ -4,9 +4,9 @@ the ones missed by more than 10 %."""
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.paper_values import read_paper_values
-from rotorvib.reproduced_csv import read_reproduced
-from rotorvib.discrepancy import misses, to_dataset
+from rotorvib.comparison.paper_values import read_paper_values
+from rotorvib.comparison.reproduced_csv import read_reproduced
+from rotorvib.comparison.discrepancy import misses, to_dataset
 from rotorvib.pipeline.job import job_config
 from rotorvib.io.datasets import Provenance, write_dataset
 from rotorvib.papers.c.discrepancies import (MODELS, hypotheses, inversions,

@@ -2,10 +2,10 @@
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib.choices import Close
+from rotorvib.comparison.choices import Close
 
-from rotorvib.paper_values import paper_values_of
-from rotorvib.reproduced_csv import write_reproduced
+from rotorvib.comparison.paper_values import paper_values_of
+from rotorvib.comparison.reproduced_csv import write_reproduced
 from rotorvib.io.datasets import read_dataset
 from rotorvib.models.absorber.parameters import Rotor
 from rotorvib.papers.c.broadband import broadband_rows

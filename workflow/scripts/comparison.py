@@ -3,11 +3,11 @@ explain every number missed by the discrepancy analysis (results/discrepancies.*
 
 from rotorvib.pipeline import job  # first: the imports below run without the cyclic GC
 
-from rotorvib import discrepancy
-from rotorvib.comparison import build_table, write_table_files
-from rotorvib.paper_values import read_paper_values
+from rotorvib.comparison import discrepancy
+from rotorvib.comparison.table import build_table, write_table_files
+from rotorvib.comparison.paper_values import read_paper_values
 from rotorvib.io.datasets import read_dataset
-from rotorvib.reproduced_csv import read_reproduced
+from rotorvib.comparison.reproduced_csv import read_reproduced
 
 job.start(snakemake.log[0])
 producers = snakemake.params.input_producers  # each input dataset's rule and configuration

@@ -9,7 +9,7 @@ import importlib
 import json
 from pathlib import Path
 
-from rotorvib.paper_values import paper_values_of
+from rotorvib.comparison.paper_values import paper_values_of
 from rotorvib.io.datasets import read_dataset
 from rotorvib.io.plotting import drawn_key, parameters_text, save
 

@@ -7,7 +7,7 @@ import csv
 import json
 from pathlib import Path
 
-from rotorvib import discrepancy
+from rotorvib.comparison import discrepancy
 from rotorvib.pipeline import report, report_pages, report_tables
 
 job.start(snakemake.log[0])

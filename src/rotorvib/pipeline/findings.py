@@ -31,8 +31,8 @@ import re
 import sys
 from pathlib import Path
 
-from rotorvib.comparison import (CLAIM_VERDICTS, EXPECTATION_VERDICTS, NUMERIC_VERDICTS, totals,
-                                 verdict_definitions)
+from rotorvib.comparison.verdicts import (CLAIM_VERDICTS, EXPECTATION_VERDICTS, NUMERIC_VERDICTS,
+                                         totals, verdict_definitions)
 
 ROOT = Path(__file__).resolve().parents[3]
 TEMPLATE = ROOT / "docs/findings/papers.template.md"

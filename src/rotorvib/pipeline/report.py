@@ -14,7 +14,8 @@ import re
 from collections import Counter
 from pathlib import Path
 
-from rotorvib.comparison import VERDICT_GROUPS, margin_text, totals, verdict_definitions
+from rotorvib.comparison.table import margin_text
+from rotorvib.comparison.verdicts import VERDICT_GROUPS, totals, verdict_definitions
 
 # Verdicts that are findings: the paper and the reproduction disagree.
 FINDINGS = ("MAJOR", "PAPER-INCONSISTENT", "UNEXPECTED", "NOT SUPPORTED")
@@ -246,7 +247,7 @@ def totals_table(table: list[dict]) -> list[str]:
 
 
 def findings(table: list[dict], claims: dict[tuple[str, str], str]) -> list[str]:
-    """The disagreements, one bullet per finding (rotorvib.comparison.with_findings: one cause,
+    """The disagreements, one bullet per finding (rotorvib.comparison.table.with_findings: one cause,
     however many rows show it), naming the items and rows it covers and stating its largest
     miss (the first row where no number is printed) as in a caption, with the whole
     explanation (a clause cut short loses its numbers)."""

@@ -18,7 +18,7 @@ import html
 import io
 import math
 
-from rotorvib.paper_values import decimals
+from rotorvib.comparison.paper_values import decimals
 
 #: Columns shown first, in this order, where a table has them: what the paper states beside what
 #: the reproduction finds and the verdict; the others follow in the CSV's order.

@@ -36,6 +36,8 @@ import xarray as xr
 
 from rotorvib.checks import integer
 from rotorvib.methods.optima import GAResult
+from rotorvib.models.balancer.layout import N_METRICS
+from rotorvib.models.balancer.simulate import use_threads
 
 Runner = Callable[[list], np.ndarray]
 
@@ -156,6 +158,15 @@ def run_study(snakemake, runs: Runner, build: Callable[[Runner], xr.Dataset], *,
     _study_job(snakemake, lambda: build(runs), shard_job,
                lambda pieces: build(GatheredRuns(pieces)), seed)
 
+
+
+def run_balancer_study(snakemake, setup, build: Callable[[Runner], xr.Dataset], *, study: str,
+                       seed: int | None = None) -> None:
+    """:func:`run_study` of a study of the balancer's runs: ``setup.runs`` (e.g.
+    :meth:`rotorvib.papers.b.setup.Setup.runs`), each a row of the balancer's metrics, the
+    batches shared out to the job's threads."""
+    use_threads(snakemake.threads)
+    run_study(snakemake, setup.runs, build, width=N_METRICS, study=study, seed=seed)
 
 def searches_dataset(results: list[GAResult], searches, study: str, shard: int,
                      shards: int) -> xr.Dataset:

@@ -23,7 +23,7 @@ from functools import lru_cache
 
 import sympy as sp
 
-from rotorvib.models.balancer.stability import N_BALLS
+from rotorvib.models.balancer.parameters import N_BALLS
 
 MU, RHO, ZETA, BETA, OMEGA = sp.symbols("mu rho zeta beta Omega", positive=True)
 TAU = sp.Symbol("tau", real=True)

@@ -22,6 +22,9 @@ from rotorvib.models.balancer import layout
 #: Balls in one race at most: a bound on the size of the state (each ball adds two variables),
 #: not a physical one; the papers have two.
 MAX_BALLS = 64
+#: Balls of the linearised balanced state (``stability``) and of the energies it is derived
+#: from (``equations``): the papers' two. Defined here, where both import it.
+N_BALLS = 2
 
 
 @dataclass(frozen=True)

@@ -19,14 +19,14 @@ import numpy as np
 
 from rotorvib.checks import finite_array, in_domain
 from rotorvib.methods.codegen import cached_lambdify
-
-N_BALLS = 2
-
+from rotorvib.models.balancer.parameters import N_BALLS
 
 #: The files whose code defines the symbolic expressions evaluated here and in :mod:`expansion`:
-#: their derivation (:mod:`equations`, imported only to derive) and this module (:data:`N_BALLS`),
+#: their derivation (:mod:`equations`, imported only to derive), the module of the ball count
+#: it is derived for (:data:`~rotorvib.models.balancer.parameters.N_BALLS`) and this module,
 #: read for the generated code's cache key.
-DERIVATION = (Path(__file__).with_name("equations.py"), Path(__file__))
+DERIVATION = (Path(__file__).with_name("equations.py"), Path(__file__).with_name("parameters.py"),
+              Path(__file__))
 
 
 def generated(name: str, derive, *, beside: str | Path = __file__):

@@ -7,8 +7,8 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.choices import Close
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.choices import Close
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.tables import order_bound
 from rotorvib.methods import routh
 

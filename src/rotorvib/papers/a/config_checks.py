@@ -4,7 +4,7 @@ within ``paper_a``; the workflow runs them when it reads the configuration, befo
 
 from __future__ import annotations
 
-from rotorvib.config_problems import tolerance_problem
+from rotorvib.papers.config_problems import tolerance_problem
 
 
 def problems(a: dict) -> list[tuple[str, str]]:

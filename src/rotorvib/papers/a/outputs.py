@@ -1,9 +1,9 @@
-"""Paper A's outputs (:mod:`rotorvib.outputs`): its figures, as functions of the
+"""Paper A's outputs (:mod:`rotorvib.papers.outputs`): its figures, as functions of the
 configuration's ``paper_a`` section."""
 
 from __future__ import annotations
 
-from rotorvib.outputs import figure
+from rotorvib.papers.outputs import figure
 
 #: Datasets written that no figure draws.
 UNDRAWN_DATASETS = ()

@@ -24,7 +24,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.tables import order_bound
 from rotorvib.io.variables import described
 from rotorvib.models.balancer import stability

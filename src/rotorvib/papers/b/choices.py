@@ -1,5 +1,5 @@
 """The project's choices that paper B's rows rest on, as each row names them
-(:attr:`rotorvib.comparison.Reproduced.choices`): a configuration key and why it is a choice."""
+(:attr:`rotorvib.comparison.reproduced.Reproduced.choices`): a configuration key and why it is a choice."""
 
 from __future__ import annotations
 

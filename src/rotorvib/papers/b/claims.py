@@ -15,7 +15,7 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, merge_variants, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced, merge_variants
 from rotorvib.io.coords import labels, pick
 from rotorvib.papers.b.choices import (BETA_GRID, FIG2_GRID, MASS_GRID, R_CHOICE, TIME_CHOICE,
                                        ZETA_CHOICE, kinematics_choice)

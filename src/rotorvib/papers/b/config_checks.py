@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from rotorvib.checks import sobol_design_problem
-from rotorvib.config_problems import seed_spread_problem, tolerance_problem
+from rotorvib.papers.config_problems import seed_spread_problem, tolerance_problem
 from rotorvib.models.balancer.limits import radians_problem, samples_problem
 
 #: Chosen: the most run-ups one grid study of paper B may ask for. Every job of a study (each

@@ -12,7 +12,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin
+from rotorvib.comparison.reproduced import Margin
 
 
 def timed(value: float, uncertainty: float) -> Margin:

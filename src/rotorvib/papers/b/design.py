@@ -26,7 +26,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.variables import described
 from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.attributes import dataset_attrs

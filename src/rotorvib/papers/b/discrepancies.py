@@ -1,5 +1,5 @@
 """Paper B's discrepancy analysis: the printed balance and decay times the reproduction misses,
-recomputed under the hypotheses of :mod:`rotorvib.discrepancy`.
+recomputed under the hypotheses of :mod:`rotorvib.comparison.discrepancy`.
 
 A quantity is a few runs of the balancer (keywords of :meth:`Setup.run_inputs`) reduced to one
 number: the mean of a metric over the runs (Fig 7's balance time, Table 2's decay times, Table
@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from rotorvib.discrepancy import Hypothesis, Inversion, invert, parameter_slips
+from rotorvib.comparison.discrepancy import Hypothesis, Inversion, invert, parameter_slips
 from rotorvib.models.balancer.layout import metric
 from rotorvib.papers.b.setup import Setup
 

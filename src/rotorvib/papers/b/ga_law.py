@@ -24,8 +24,8 @@ import dataclasses
 import numpy as np
 import xarray as xr
 
-from rotorvib.choices import under_choice
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.choices import under_choice
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.coords import label_coord, pick
 from rotorvib.io.variables import described
 from rotorvib.models.balancer import layout

@@ -24,8 +24,8 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from rotorvib.choices import VARIANT_JOIN, Close
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.choices import VARIANT_JOIN, Close
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.variables import described
 from rotorvib.methods.bands import percentile_spread
 from rotorvib.papers.b.choices import LAW_CHOICES

@@ -1,11 +1,11 @@
-"""Paper B's outputs (:mod:`rotorvib.outputs`) and the cases its rules hand to their jobs, as
+"""Paper B's outputs (:mod:`rotorvib.papers.outputs`) and the cases its rules hand to their jobs, as
 functions of the configuration's ``paper_b`` section: its figures and tables, the rotor setup
 every run-up shares, the planes of the stability boundaries, the cases of the uncertainty study
 and the sources of the balance-time law."""
 
 from __future__ import annotations
 
-from rotorvib.outputs import figure, table
+from rotorvib.papers.outputs import figure, table
 
 #: Datasets written that no figure draws (the final files besides the figures' datasets).
 UNDRAWN_DATASETS = ("discrepancies", "table1")

@@ -25,7 +25,7 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.progress import Progress
 from rotorvib.methods.optima import ParetoFront
 from rotorvib.models.balancer.layout import metric

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.variables import described
 from rotorvib.methods.bands import percentile_spread
 from rotorvib.models.balancer.passage import passage_peak

@@ -13,7 +13,7 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Reproduced
+from rotorvib.comparison.reproduced import Reproduced
 from rotorvib.io.coords import pick
 from rotorvib.papers.b.curves import mean_over_ics
 

@@ -33,7 +33,8 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import MATCH_TOL, Margin, Reproduced, within_band
+from rotorvib.comparison.reproduced import Margin, Reproduced, within_band
+from rotorvib.comparison.verdicts import MATCH_TOL
 from rotorvib.io.coords import pick
 from rotorvib.methods.bands import band_margin, band_statement
 from rotorvib.methods.sensitivity import problem, sample, study_dataset

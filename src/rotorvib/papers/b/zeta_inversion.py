@@ -22,10 +22,11 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from rotorvib.choices import VARIANT_JOIN
-from rotorvib.comparison import MATCH_TOL, Margin, Reproduced
+from rotorvib.comparison.choices import VARIANT_JOIN
+from rotorvib.comparison.reproduced import Margin, Reproduced
+from rotorvib.comparison.verdicts import MATCH_TOL
 from rotorvib.io.coords import label_coord, labels
-from rotorvib.paper_values import decimals
+from rotorvib.comparison.paper_values import decimals
 from rotorvib.papers.b.choices import R_CHOICE, kinematics_choice
 from rotorvib.papers.b.attributes import dataset_attrs
 from rotorvib.papers.b.setup import KINEMATICS_LONG_NAME, Setup, parameter_coord

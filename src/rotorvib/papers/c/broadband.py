@@ -23,7 +23,7 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.checks import nonnegative_array
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.progress import Progress
 from rotorvib.io.variables import described
 from rotorvib.methods.forked import map_forked

@@ -1,7 +1,7 @@
 """Paper C's stated values and claims, evaluated from the datasets of the workflow.
 
 :func:`reproduce` reads the four datasets (GA, Fig 5, Fig 6, time responses) and returns one
-:class:`~rotorvib.comparison.Reproduced` row per quantity of ``data/paper_values.csv`` for paper C,
+:class:`~rotorvib.comparison.reproduced.Reproduced` row per quantity of ``data/paper_values.csv`` for paper C,
 each with an explanation computed from the data.  Nothing here integrates or solves the model:
 it only measures the datasets.
 """
@@ -13,9 +13,10 @@ from functools import partial
 import numpy as np
 import xarray as xr
 
-from rotorvib.choices import Close
+from rotorvib.comparison.choices import Close
 
-from rotorvib.comparison import MATCH_TOL, Margin, merge_variants, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced, merge_variants
+from rotorvib.comparison.verdicts import MATCH_TOL
 from rotorvib.io.coords import labels, pick
 from rotorvib.models.absorber.parameters import DUAL_NAMES, dual_from_vector
 

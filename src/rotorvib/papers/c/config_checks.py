@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorvib.checks import sobol_design_problem
-from rotorvib.config_problems import seed_spread_problem, tolerance_problem
+from rotorvib.papers.config_problems import seed_spread_problem, tolerance_problem
 from rotorvib.models.absorber.frequency_response import natural_frequencies
 from rotorvib.models.absorber.parameters import Rotor, dual_absorber, undamped
 

@@ -1,5 +1,5 @@
 """Paper C's discrepancy analysis: its printed amplitudes and GA optimum recomputed under the
-hypotheses of :mod:`rotorvib.discrepancy`.
+hypotheses of :mod:`rotorvib.comparison.discrepancy`.
 
 * ``theta_table2``: ``|Theta(omega_n)|`` of eq. (20) at Table 2's design, from Table 1's rotor
   and Table 2's eight values; definition alternative: the determinant as printed.
@@ -20,7 +20,7 @@ from dataclasses import fields
 
 import numpy as np
 
-from rotorvib.discrepancy import Hypothesis, invert, parameter_slips
+from rotorvib.comparison.discrepancy import Hypothesis, invert, parameter_slips
 from rotorvib.models.absorber.frequency_response import theta_eq20
 from rotorvib.models.absorber.parameters import DUAL_NAMES, Rotor
 from rotorvib.models.absorber.time_response import undamped_resonance_envelope

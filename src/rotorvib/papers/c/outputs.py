@@ -1,9 +1,9 @@
-"""Paper C's outputs (:mod:`rotorvib.outputs`): its figures and tables, as functions of the
+"""Paper C's outputs (:mod:`rotorvib.papers.outputs`): its figures and tables, as functions of the
 configuration's ``paper_c`` section."""
 
 from __future__ import annotations
 
-from rotorvib.outputs import figure, table
+from rotorvib.papers.outputs import figure, table
 
 #: Datasets written that no figure draws (the final files besides the figures' datasets).
 UNDRAWN_DATASETS = ("discrepancies",)

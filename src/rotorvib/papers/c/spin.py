@@ -24,9 +24,9 @@ import numpy as np
 import xarray as xr
 
 from rotorvib.checks import integer, nonnegative_array, number
-from rotorvib.choices import VARIANT_JOIN, Close
+from rotorvib.comparison.choices import VARIANT_JOIN, Close
 
-from rotorvib.comparison import Margin, Reproduced
+from rotorvib.comparison.reproduced import Margin, Reproduced
 from rotorvib.io.coords import label_coord, labels
 from rotorvib.models.absorber.frequency_response import amplitude
 from rotorvib.models.absorber.parameters import Rotor

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import Reproduced, within_band
+from rotorvib.comparison.reproduced import Reproduced, within_band
 from rotorvib.methods.bands import band_statement
 from rotorvib.methods.sensitivity import problem, sample, study_dataset
 from rotorvib.models.absorber.frequency_response import theta_eq20

@@ -1,6 +1,6 @@
 """The project's choices a comparison row rests on, and the alternatives it is evaluated under.
 
-A row of :mod:`rotorvib.comparison` names each choice it rests on as ``"key = value (why)"``
+A row of :mod:`rotorvib.comparison.table` names each choice it rests on as ``"key = value (why)"``
 (a configuration key, or a constant of the comparison): a tolerance, a parameter the paper does
 not give, a grid, a range's edge. :func:`under_choice` evaluates a claim at the used value and
 at each declared alternative; :class:`Close` is the comparison's reading of "close" with its
@@ -26,7 +26,7 @@ def under_choice(evaluate, key: str, used, alternatives, unit: str = "") -> dict
     """A claim evaluated with one of the project's choices at the value ``used`` and at each
     of ``alternatives``: ``{"key = value unit": evaluate(value)}``, the used value first (its
     margin is the row's). Passed as a claim's ``holds``, the verdict is DEPENDS, naming the
-    values, where the choice decides it (:func:`rotorvib.comparison.claim_verdict`)."""
+    values, where the choice decides it (:func:`rotorvib.comparison.verdicts.claim_verdict`)."""
     def name(value):
         said = f"{value:g}" if isinstance(value, (int, float)) else str(value)
         return f"{key} = {said}" + (f" {unit}" if unit else "")
@@ -55,7 +55,7 @@ class Close:
         return format(self.value, spec)
 
     def margins(self, evaluate, more=()) -> dict:
-        """``evaluate(close)`` (a :class:`rotorvib.comparison.Margin`) at the standard, its alternatives and
+        """``evaluate(close)`` (a :class:`rotorvib.comparison.reproduced.Margin`) at the standard, its alternatives and
         ``more`` (:func:`under_choice`)."""
         return under_choice(evaluate, self.KEY, self.value, (*self.alternatives, *more))
 

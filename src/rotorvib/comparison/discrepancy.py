@@ -3,7 +3,8 @@ parameter would have to be to reproduce it.
 
 For a printed value ``P`` of a quantity the reproduction computes as ``q``, a *hypothesis* is a
 named alternative computation with its value ``q_h``; it *reproduces* ``P`` when
-``|q_h - P| <= tol |P|`` (``tol`` = 1 %, the MATCH tolerance of :mod:`rotorvib.comparison`).
+``|q_h - P| <= tol |P|`` (``tol`` = 1 %, the MATCH tolerance of
+:mod:`rotorvib.comparison.verdicts`).
 Kinds of hypothesis:
 
 * ``definition``: another definition the paper leaves open (balance or decay criterion, envelope);
@@ -28,10 +29,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
-from rotorvib.comparison import MATCH_TOL, judged_against, relative_error, verdict
+from rotorvib.comparison.verdicts import MATCH_TOL, judged_against, relative_error, verdict
 from rotorvib.io.coords import label_coord, labels
 from rotorvib.io.tables import write_table
-from rotorvib.paper_values import decimals
+from rotorvib.comparison.paper_values import decimals
 
 KINDS = ("definition", "variant", "parameter slip", "unit of the result", "rounding")
 REPRODUCES_WITHIN = MATCH_TOL
@@ -95,9 +96,9 @@ def reproduces(printed: float, value: float, tol: float = REPRODUCES_WITHIN) -> 
 
 def misses(paper_values: list[dict], reproduced) -> dict[str, tuple[float, str]]:
     """``{quantity: (value judged against, verdict)}`` of the printed numbers the reproduction
-    misses (MINOR or MAJOR in :func:`rotorvib.comparison.verdict`): the printed value, or the
+    misses (MINOR or MAJOR in :func:`rotorvib.comparison.verdicts.verdict`): the printed value, or the
     one the paper's other numbers imply where it contradicts itself
-    (:func:`rotorvib.comparison.judged_against`), which the hypotheses must then reproduce."""
+    (:func:`rotorvib.comparison.verdicts.judged_against`), which the hypotheses must then reproduce."""
     printed = {p["quantity"]: p["value"] for p in paper_values
                if p["source"] == "printed" and p["value"] is not None}
     out = {}
@@ -225,7 +226,7 @@ BASELINE_TOL = 1e-3
 class Analysis:
     """One printed number the reproduction misses, with every hypothesis and inversion;
     ``printed`` is the value it is judged against (the implied one where the paper contradicts
-    itself, :func:`rotorvib.comparison.judged_against`)."""
+    itself, :func:`rotorvib.comparison.verdicts.judged_against`)."""
 
     paper: str
     quantity: str

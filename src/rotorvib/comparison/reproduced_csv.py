@@ -8,11 +8,11 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-from rotorvib.choices import CHOICE_SEPARATOR
+from rotorvib.comparison.choices import CHOICE_SEPARATOR
 
-from rotorvib.comparison import MARGIN_COLUMNS, Margin, Reproduced
+from rotorvib.comparison.reproduced import MARGIN_COLUMNS, Margin, Reproduced
 
-from rotorvib.paper_values import float_or_none
+from rotorvib.comparison.paper_values import float_or_none
 
 _HOLDS_TEXT = {True: "yes", False: "no", None: "undetermined"}
 
