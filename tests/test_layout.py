@@ -167,10 +167,3 @@ def test_the_tests_benchmarks_and_docs_import_in_order():
                           "benchmarks", "docs/conf.py"], cwd=root, capture_output=True, text=True)
     assert run.returncode == 0, run.stdout + run.stderr
 
-
-def test_the_decisions_table_counts_paper_bs_rule_file():
-    """The lines of paper B's rule file, as the decisions table (docs/architecture.md) gives
-    them."""
-    table = (SRC.parent / "docs/architecture.md").read_text()
-    lines = int(re.search(r"`paper_b\.smk` \d+ lines at 6ede2d7, (\d+) now", table).group(1))
-    assert lines == len((SRC.parent / "workflow/rules/paper_b.smk").read_text().splitlines())
