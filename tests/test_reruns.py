@@ -123,6 +123,8 @@ def test_every_module_and_data_file_reruns_exactly_the_jobs_that_load_it(run_dir
                    "rotorvib.pipeline", "rotorvib.pipeline.job", "rotorvib.pipeline.pint_probe",
                    "rotorvib.pipeline.console", "rotorvib.pipeline.shards")}
     assert max(loaders.values()) <= 1, loaders
+    # no job reads YAML: the configuration and the papers' citations are read with the rules
+    assert loaders["src/rotorvib/pipeline/strict_yaml.py"] == 0, loaders
 
 
 def test_a_forked_command_answers_as_a_fresh_one(run_dir, tmp_path):
