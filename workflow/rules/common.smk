@@ -73,11 +73,10 @@ PAPERS = sorted(
 CLOSE = config["comparison"]
 # Threads of each batch rule (it declares `batch=1` among its resources, and shares a batch of
 # runs out over threads, rotorvib.models.balancer.simulate, or searches over processes,
-# rotorvib.methods.forked):
-# half the cores Snakemake is given, so that -j2 runs two single-threaded jobs side by side and a
-# larger -j hands each batch job several cores (profiles/slurm sets its own, written from the
-# rules by rotorvib.pipeline.slurm_profile). A command given no cores (--rulegraph, --lint)
-# plans with one.
+# rotorvib.methods.forked), half the cores Snakemake is given: -j2 runs two single-threaded
+# jobs side by side, a larger -j hands each batch job several cores (profiles/slurm sets its
+# own, written from the rules by rotorvib.pipeline.slurm_profile). A command given no cores
+# (--rulegraph, --lint) plans with one.
 try:
     BATCH_THREADS = max(1, int(workflow.cores) // 2)
 except (WorkflowError, TypeError):
