@@ -168,6 +168,7 @@ def run_balancer_study(snakemake, setup, build: Callable[[Runner], xr.Dataset], 
     use_threads(snakemake.threads)
     run_study(snakemake, setup.runs, build, width=N_METRICS, study=study, seed=seed)
 
+
 def searches_dataset(results: list[GAResult], searches, study: str, shard: int,
                      shards: int) -> xr.Dataset:
     """The ``results`` of the searches numbered ``searches`` (their indices in the study): each
