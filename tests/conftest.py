@@ -85,6 +85,15 @@ def snakemake_here():
 
 
 @pytest.fixture(scope="session")
+def declared():
+    """Every rule of the workflow as Snakemake reads it (its rule objects, as the plan reads
+    them: rotorvib.pipeline.slurm_profile.declared_rules), by name; read once a session."""
+    from rotorvib.pipeline.slurm_profile import declared_rules
+
+    return {rule.name: rule for rule in declared_rules(ROOT)}
+
+
+@pytest.fixture(scope="session")
 def config():
     return validate_config(load_yaml(ROOT / "config/config.yaml"),
                            load_yaml(ROOT / "config/schema.yaml"))

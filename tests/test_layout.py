@@ -84,14 +84,6 @@ def test_the_package_root_holds_packages_and_the_shared_checks():
     assert sorted(p.name for p in root.glob("*.py")) == ["__init__.py", "checks.py"]
 
 
-@pytest.fixture(scope="module")
-def declared():
-    """Every rule as Snakemake reads it (its rule objects, as the plan reads them), by name."""
-    from rotorvib.pipeline.slurm_profile import declared_rules
-
-    return {rule.name: rule for rule in declared_rules(SRC.parent)}
-
-
 def test_the_rules_keep_the_rules_for_rule_authors(declared):
     """rotorvib.pipeline.plan.rule_problems holds for the workflow's rules (Snakemake also
     refuses to plan otherwise): every rule that writes a dataset has a benchmark and a priority."""

@@ -16,7 +16,6 @@ import pytest
 from conftest import ROOT
 from forked_snakemake import ForkedSnakemake
 from rotorvib.pipeline.fingerprint import import_closure
-from rotorvib.pipeline.slurm_profile import declared_rules
 from workflow_runs import (
     REDUCED,
     copy_run,
@@ -162,14 +161,14 @@ def _jobs_by_rule(cwd: Path, *args: str) -> dict[str, int]:
             if rule != "total"}
 
 
-def test_the_decisions_state_what_an_edit_of_the_jobs_machinery_reruns(run_dir):
+def test_the_decisions_state_what_an_edit_of_the_jobs_machinery_reruns(run_dir, declared):
     """The decisions table (docs/architecture.md) gives, for the pipeline modules that more
     than one job loads (a job's start-up; a batch study's split), the jobs an edit of one
     reruns, in a paper run and in the reduced run: counted here from the modules each job of
     the reduced run loaded, and from the code the scripts of a paper run's jobs import."""
     records = job_records(run_dir)
     paper = _jobs_by_rule(ROOT)
-    scripts = {rule.name: ROOT / rule.script for rule in declared_rules(ROOT) if rule.script}
+    scripts = {name: ROOT / rule.script for name, rule in declared.items() if rule.script}
     stated = re.compile(r"(\d+) of a paper run's (\d+) jobs, (\d+) of the reduced run's (\d+)")
     table = (ROOT / "docs/architecture.md").read_text()
     for module in ("job", "pint_probe", "console", "shards"):
